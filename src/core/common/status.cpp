@@ -1,0 +1,53 @@
+#include "core/common/status.h"
+
+namespace imagepro {
+
+namespace {
+struct StatusText {
+  std::string_view name;
+  std::string_view message;
+};
+
+StatusText text(Status s) {
+  switch (s) {
+    case Status::Ok: return {"ok", "success"};
+    case Status::EmptyFrame: return {"EmptyFrame", "the frame is empty or not 8-bit grey"};
+    case Status::FileNotFound: return {"FileNotFound", "the file does not exist"};
+    case Status::FileUnreadable: return {"FileUnreadable", "the file cannot be read or decoded as an image"};
+    case Status::FileNotWritable: return {"FileNotWritable", "the file cannot be written"};
+    case Status::EndOfStream: return {"EndOfStream", "the source has no more frames"};
+    case Status::ThresholdUndefined: return {"ThresholdUndefined", "the histogram has fewer than two grey levels, so no threshold separates two classes"};
+    case Status::UniformFrame: return {"UniformFrame", "the binary image is all black or all white"};
+    case Status::NoEdges: return {"NoEdges", "no edge pixels were found"};
+    case Status::TooFewPoints: return {"TooFewPoints", "fewer than six contour points for an ellipse fit"};
+    case Status::DegenerateFit: return {"DegenerateFit", "the contour points are collinear or degenerate"};
+    case Status::NotAnEllipse: return {"NotAnEllipse", "the best conic through the points is not an ellipse"};
+    case Status::NoTarget: return {"NoTarget", "no target was found in the frame"};
+    case Status::AmbiguousTarget: return {"AmbiguousTarget", "more than one target was found in the frame"};
+    case Status::SingularConic: return {"SingularConic", "the target's conic is singular"};
+    case Status::SpotsNotFound: return {"SpotsNotFound", "the target's two spots were not found"};
+    case Status::AmbiguousSpots: return {"AmbiguousSpots", "more than two spot candidates inside the target"};
+    case Status::CentreSpotOutsideEllipse: return {"CentreSpotOutsideEllipse", "the centre spot lies outside the target's ellipse"};
+    case Status::NormalFacingAway: return {"NormalFacingAway", "the reconstructed target faces away from the camera"};
+    case Status::OutOfImage: return {"OutOfImage", "the target or region lies outside the image"};
+    case Status::CameraNotFound: return {"CameraNotFound", "no camera device at that path"};
+    case Status::CameraPermissionDenied: return {"CameraPermissionDenied", "permission denied opening the camera"};
+    case Status::CameraBusy: return {"CameraBusy", "the camera is in use by another program"};
+    case Status::CameraNoSupportedFormat: return {"CameraNoSupportedFormat", "the camera offers no pixel format ImagePro can read"};
+    case Status::CameraFormatRefused: return {"CameraFormatRefused", "the camera refused the requested format"};
+    case Status::CameraTimeout: return {"CameraTimeout", "the camera delivered no frame in time"};
+    case Status::CameraDisconnected: return {"CameraDisconnected", "the camera vanished while streaming"};
+    case Status::InvalidSettings: return {"InvalidSettings", "the settings are invalid"};
+    case Status::TooFewMatches: return {"TooFewMatches", "too few calibration spots were matched"};
+    case Status::MatchAmbiguity: return {"MatchAmbiguity", "a calibration spot matches more than one ideal position"};
+    case Status::Diverged: return {"Diverged", "the iteration diverged"};
+    case Status::Stopped: return {"Stopped", "processing stopped at the selected application level"};
+  }
+  return {"Unknown", "unknown status"};
+}
+}  // namespace
+
+std::string_view statusName(Status s) { return text(s).name; }
+std::string_view statusMessage(Status s) { return text(s).message; }
+
+}  // namespace imagepro

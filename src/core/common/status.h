@@ -1,0 +1,60 @@
+#pragma once
+// Status codes returned by every stage of the pipeline (thesis 1.4: "all methods
+// should check their inputs and outputs ... and return a success or error code").
+// A stage never throws across the frame loop; the frame result carries the status.
+#include <cstdint>
+#include <string_view>
+
+namespace imagepro {
+
+enum class Status : std::uint8_t {
+  Ok,
+  // input
+  EmptyFrame,          // no pixels (zero size) or wrong pixel type
+  FileNotFound,
+  FileUnreadable,      // exists but cannot be read or decoded
+  FileNotWritable,     // cannot be written (permissions, disk full, missing folder)
+  EndOfStream,         // a finite source has no more frames
+  // segmentation
+  ThresholdUndefined,  // histogram has a single populated grey level or is empty
+  UniformFrame,        // all black or all white after thresholding: nothing to segment
+  // edges / connectivity
+  NoEdges,
+  // ellipse detection
+  TooFewPoints,
+  DegenerateFit,       // collinear or otherwise rank-deficient points
+  NotAnEllipse,        // the best conic is a hyperbola or a parabola
+  NoTarget,
+  AmbiguousTarget,
+  // reconstruction
+  SingularConic,
+  SpotsNotFound,
+  AmbiguousSpots,
+  CentreSpotOutsideEllipse,
+  NormalFacingAway,
+  OutOfImage,
+  // camera
+  CameraNotFound,
+  CameraPermissionDenied,
+  CameraBusy,
+  CameraNoSupportedFormat,
+  CameraFormatRefused,
+  CameraTimeout,
+  CameraDisconnected,
+  // settings / calibration
+  InvalidSettings,
+  TooFewMatches,
+  MatchAmbiguity,
+  Diverged,
+  // processing deliberately stopped at an earlier stage (application level)
+  Stopped,
+};
+
+// Stable machine name used in CSV output ("ok", "NoTarget", ...).
+std::string_view statusName(Status s);
+// One sentence for a person: what went wrong, in words.
+std::string_view statusMessage(Status s);
+
+inline bool ok(Status s) { return s == Status::Ok; }
+
+}  // namespace imagepro

@@ -1,0 +1,179 @@
+#pragma once
+// PipelineOptions: every control of the thesis's appendix A panels, one field each,
+// with its default. This struct is the one place a default lives; the GUI, the CLI
+// and the settings file (settings.h) all read and write it.
+#include <array>
+#include <cstdint>
+
+#include "core/common/geometry.h"
+
+namespace imagepro {
+
+// Thresholding and Re-Thresholding panels (thesis 2.3). None is a re-threshold choice only.
+enum class ThresholdMethod : std::uint8_t {
+  None,     // re-threshold: by-pass
+  Manual,   // constant value "Val"
+  AtOrig,   // Kittler-Illingworth minimum error, eqs. 2.4-2.10, sums recomputed per t
+  AtMod,    // the same criterion, incremental moment vectors, eqs. 2.11-2.17
+};
+
+// Edge Detection panel (thesis 2.4).
+enum class EdgeMethod : std::uint8_t {
+  SobelThinning,  // eq. 2.21 + three-pixel thinning (older method, kept for comparison)
+  Laplace,        // eq. 2.25 with Sobel gradients at edge pixels only
+};
+
+// Connectivity panel (thesis 2.5).
+enum class ConnectivityMethod : std::uint8_t {
+  CN0,  // corrected grouping of the earlier study, O(n^2)
+  CN1,  // one-pass grouping, O(n)
+};
+
+// Ellipse Detection panel (thesis 2.6).
+enum class EllipseMethod : std::uint8_t {
+  Bennett,    // per-path accumulator, score/quality/symmetry rules (2.6.1)
+  DirectFit,  // Fitzgibbon direct least-squares fit (2.6.2)
+};
+
+// Which measure the direct fit is accepted by.
+enum class FitAcceptRule : std::uint8_t {
+  RelativeError,    // thesis E_rel (eq. 2.42) below a threshold
+  SampsonDistance,  // mean Sampson distance in pixels below a threshold (scale invariant)
+};
+
+// Reconstruction panel: which contour points feed the ellipse of the reconstruction.
+enum class ContourMode : std::uint8_t {
+  EightPointsOrg,
+  EightPointsMod,
+  FullPathOrg,
+  FullPathMod,
+  SubPixel,  // grey-level edge along the gradient (beyond the thesis, its rec. 6.3)
+};
+
+// Target Tracking panel (thesis ch. 3).
+enum class TrackingMode : std::uint8_t {
+  Off,
+  Corners2D,
+  Parameters3D,
+};
+
+// Application panel: process each frame up to this stage and stop.
+enum class ApplicationLevel : std::uint8_t {
+  Source,
+  Threshold,
+  Edges,
+  Connectivity,
+  Ellipse,
+  Reconstruction,
+};
+
+struct ThresholdOptions {
+  ThresholdMethod method = ThresholdMethod::AtMod;
+  int manual_value = 128;  // "Val", 0..255: pixels > value are white (eq. 2.1)
+};
+
+struct EllipseOptions {
+  EllipseMethod method = EllipseMethod::DirectFit;
+  FitAcceptRule accept_rule = FitAcceptRule::RelativeError;
+  double max_relative_error = 0.02;     // thesis threshold for E_rel
+  double max_sampson_distance_px = 0.5;
+  int min_path_pixels = 20;             // shorter paths are not considered
+  // Bennett decision rules (thesis 2.6.1).
+  double bennett_min_score = 550.0;
+  double bennett_max_score = 840.0;
+  double bennett_min_quality = 255.0;
+  double bennett_max_quality = 375.0;
+  // Report every target found instead of failing with AmbiguousTarget.
+  bool report_all_targets = false;
+};
+
+struct ReconstructionOptions {
+  bool distortion_correction = true;
+  bool exact_undistortion = false;  // Newton inverse instead of the Taylor inverse (eqs. 4.18-4.19)
+  ContourMode contour_mode = ContourMode::FullPathMod;
+  int crop_margin_px = 4;
+};
+
+struct TrackingOptions {
+  TrackingMode mode = TrackingMode::Corners2D;
+  int data_points = 5;             // last n points
+  int degree = 2;                  // 0..3
+  double min_r = 0.9;              // critical correlation coefficient
+  double reduction_percent = 10.0; // "red [%]": damps shrinking of the region
+  double enlarge_px = 10.0;        // fixed pixels added to width and height
+  double enlarge_scale = 0.1;      // fixed scale factor
+  double enlarge_speed_scale = 0.01; // scale per pixel/frame of the target centre's speed
+};
+
+struct DisplayOptions {
+  enum class Background : std::uint8_t { Empty, Source, Binary } background = Background::Source;
+  enum class Edges : std::uint8_t { None, EdgePixels, ConnectedPaths } edges = Edges::None;
+  enum class Target : std::uint8_t { None, Path, Source, Binary } target = Target::Path;
+  bool feature_edge = true;
+  bool feature_spots = true;
+};
+
+struct PipelineOptions {
+  ThresholdOptions threshold;
+  EdgeMethod edge_method = EdgeMethod::Laplace;
+  ConnectivityMethod connectivity = ConnectivityMethod::CN1;
+  EllipseOptions ellipse;
+  ThresholdOptions rethreshold{ThresholdMethod::AtMod, 128};
+  ReconstructionOptions reconstruction;
+  TrackingOptions tracking;
+  ApplicationLevel level = ApplicationLevel::Reconstruction;
+  DisplayOptions display;
+};
+
+}  // namespace imagepro
+
+namespace imagepro {
+
+// The Virtual perspective projection source (thesis 2.2): how the target is drawn
+// and how it moves. "Settings" menu of appendix A: virtual velocities.
+enum class RenderMode : std::uint8_t {
+  Binary,  // thesis: 1-bit image, white target on black
+  Grey,    // anti-aliased 8-bit grey with optional blur, noise, gradient, clutter
+};
+
+enum class MotionKind : std::uint8_t { Static, Sinusoid, SawTooth, Pendulum };
+enum class PoseAxis : std::uint8_t { Tx, Ty, Tz, Rx, Ry, Rz };
+
+struct MotionOptions {
+  MotionKind kind = MotionKind::Static;
+  PoseAxis axis = PoseAxis::Tx;
+  double amplitude = 100.0;  // mm for translations, degrees for rotations
+  double period_s = 4.0;
+};
+
+// A target hanging from a pivot below it (+Y is down), facing the camera, swinging in
+// a vertical plane whose heading about Y is swing_axis_deg (0: swings along camera X).
+struct PendulumOptions {
+  double length_mm = 444.0;  // pivot to target centre (thesis 5.3.2: 444 mm)
+  double amplitude_deg = 15.0;
+  double gravity_m_s2 = 9.80665;
+  std::array<double, 3> pivot_mm{0.0, -300.0, 1200.0};  // camera frame
+  double swing_axis_deg = 0.0;
+};
+
+struct VirtualSceneOptions {
+  RenderMode mode = RenderMode::Grey;
+  int supersampling = 4;            // per axis, grey mode edge anti-aliasing
+  double blur_sigma_px = 0.0;
+  double noise_sigma = 0.0;         // grey levels
+  double illumination_gradient = 0.0;  // fractional brightness change across the width
+  int clutter = 0;                  // number of white bars and rectangles
+  unsigned seed = 1;                // noise and clutter
+  int white_level = 230;
+  int black_level = 20;
+  int background_level = 110;       // the scene around the target's card
+  double card_size_mm = 130.0;      // black square card carrying the target
+  double frame_rate_hz = 25.0;
+  Pose initial_pose{0.0, 0.0, 0.0, 0.0, 0.0, 800.0};
+  MotionOptions motion;
+  PendulumOptions pendulum;
+  double key_step_mm = 5.0;         // per key press (appendix A keys)
+  double key_step_deg = 1.0;
+};
+
+}  // namespace imagepro

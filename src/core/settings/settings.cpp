@@ -1,0 +1,334 @@
+#include "core/settings/settings.h"
+
+#include <nlohmann/json.hpp>
+
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "core/common/atomic_file.h"
+#include "core/settings/enum_names.h"
+
+namespace imagepro {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Walks every key of the settings once. The same walk reads and writes, so a key,
+// its place in the document and its valid range are written down exactly once.
+template <class Visitor>
+void visitSettings(Visitor& v, Settings& s) {
+  v.object("camera", [&] {
+    CameraModel& c = s.camera;
+    v.field("width", c.width, 1, 100000);
+    v.field("height", c.height, 1, 100000);
+    v.field("pixel_size_mm", c.pixel_size_mm, 1e-9, kInf);
+    v.field("image_plane_distance_mm", c.image_plane_distance_mm, 1e-9, kInf);
+    v.field("principal_point_px", c.principal_point_px, -kInf, kInf);
+    v.object("distortion", [&] {
+      v.field("k1", c.distortion.k1, -kInf, kInf);
+      v.field("k2", c.distortion.k2, -kInf, kInf);
+      v.field("p1", c.distortion.p1, -kInf, kInf);
+      v.field("p2", c.distortion.p2, -kInf, kInf);
+    });
+  });
+  v.object("target", [&] {
+    v.field("radius_mm", s.target.radius_mm, 1e-9, kInf);
+    v.field("spot_radius_mm", s.target.spot_radius_mm, 1e-9, kInf);
+    v.field("spot_offset_mm", s.target.spot_offset_mm, 1e-9, kInf);
+  });
+  v.object("pattern", [&] {
+    v.field("spot_spacing_mm", s.pattern.spot_spacing_mm, 1e-9, kInf);
+    v.field("spot_radius_mm", s.pattern.spot_radius_mm, 1e-9, kInf);
+    v.field("columns", s.pattern.columns, 1, 10000);
+    v.field("rows", s.pattern.rows, 1, 10000);
+    v.field("card_size_mm", s.pattern.card_size_mm, 1e-9, kInf);
+  });
+  v.object("virtual", [&] {
+    VirtualSceneOptions& o = s.virtual_scene;
+    v.field("mode", o.mode);
+    v.field("supersampling", o.supersampling, 1, 16);
+    v.field("blur_sigma_px", o.blur_sigma_px, 0.0, 50.0);
+    v.field("noise_sigma", o.noise_sigma, 0.0, 255.0);
+    v.field("illumination_gradient", o.illumination_gradient, -1.0, 1.0);
+    v.field("clutter", o.clutter, 0, 1000);
+    v.field("seed", o.seed, 0u, 0xffffffffu);
+    v.field("white_level", o.white_level, 0, 255);
+    v.field("black_level", o.black_level, 0, 255);
+    v.field("background_level", o.background_level, 0, 255);
+    v.field("card_size_mm", o.card_size_mm, 0.0, kInf);
+    v.field("frame_rate_hz", o.frame_rate_hz, 1e-3, 1e6);
+    v.object("pose", [&] {
+      v.field("rx_deg", o.initial_pose.rx_deg, -360.0, 360.0);
+      v.field("ry_deg", o.initial_pose.ry_deg, -360.0, 360.0);
+      v.field("rz_deg", o.initial_pose.rz_deg, -360.0, 360.0);
+      v.field("tx_mm", o.initial_pose.tx_mm, -kInf, kInf);
+      v.field("ty_mm", o.initial_pose.ty_mm, -kInf, kInf);
+      v.field("tz_mm", o.initial_pose.tz_mm, 1e-6, kInf);
+    });
+    v.object("motion", [&] {
+      v.field("kind", o.motion.kind);
+      v.field("axis", o.motion.axis);
+      v.field("amplitude", o.motion.amplitude, -kInf, kInf);
+      v.field("period_s", o.motion.period_s, 1e-6, kInf);
+    });
+    v.object("pendulum", [&] {
+      v.field("length_mm", o.pendulum.length_mm, 1e-6, kInf);
+      v.field("amplitude_deg", o.pendulum.amplitude_deg, 0.0, 89.0);
+      v.field("gravity_m_s2", o.pendulum.gravity_m_s2, 1e-6, kInf);
+      v.field("pivot_mm", o.pendulum.pivot_mm, -kInf, kInf);
+      v.field("swing_axis_deg", o.pendulum.swing_axis_deg, -360.0, 360.0);
+    });
+    v.field("key_step_mm", o.key_step_mm, 0.0, kInf);
+    v.field("key_step_deg", o.key_step_deg, 0.0, 180.0);
+  });
+  v.object("pipeline", [&] {
+    PipelineOptions& p = s.pipeline;
+    v.object("threshold", [&] {
+      v.field("method", p.threshold.method);
+      v.field("value", p.threshold.manual_value, 0, 255);
+    });
+    v.field("edge_method", p.edge_method);
+    v.field("connectivity", p.connectivity);
+    v.object("ellipse", [&] {
+      EllipseOptions& e = p.ellipse;
+      v.field("method", e.method);
+      v.field("accept_rule", e.accept_rule);
+      v.field("max_relative_error", e.max_relative_error, 0.0, kInf);
+      v.field("max_sampson_distance_px", e.max_sampson_distance_px, 0.0, kInf);
+      v.field("min_path_pixels", e.min_path_pixels, 6, 1000000);
+      v.field("bennett_min_score", e.bennett_min_score, 0.0, kInf);
+      v.field("bennett_max_score", e.bennett_max_score, 0.0, kInf);
+      v.field("bennett_min_quality", e.bennett_min_quality, 0.0, kInf);
+      v.field("bennett_max_quality", e.bennett_max_quality, 0.0, kInf);
+      v.field("report_all_targets", e.report_all_targets);
+    });
+    v.object("rethreshold", [&] {
+      v.field("method", p.rethreshold.method);
+      v.field("value", p.rethreshold.manual_value, 0, 255);
+    });
+    v.object("reconstruction", [&] {
+      v.field("distortion_correction", p.reconstruction.distortion_correction);
+      v.field("exact_undistortion", p.reconstruction.exact_undistortion);
+      v.field("contour_mode", p.reconstruction.contour_mode);
+      v.field("crop_margin_px", p.reconstruction.crop_margin_px, 0, 1000);
+    });
+    v.object("tracking", [&] {
+      TrackingOptions& t = p.tracking;
+      v.field("mode", t.mode);
+      v.field("data_points", t.data_points, 1, 100);
+      v.field("degree", t.degree, 0, 3);
+      v.field("min_r", t.min_r, -1.0, 1.0);
+      v.field("reduction_percent", t.reduction_percent, 0.0, 100.0);
+      v.field("enlarge_px", t.enlarge_px, 0.0, kInf);
+      v.field("enlarge_scale", t.enlarge_scale, 0.0, kInf);
+      v.field("enlarge_speed_scale", t.enlarge_speed_scale, 0.0, kInf);
+    });
+    v.field("level", p.level);
+    v.object("display", [&] {
+      v.field("background", p.display.background);
+      v.field("edges", p.display.edges);
+      v.field("target", p.display.target);
+      v.field("feature_edge", p.display.feature_edge);
+      v.field("feature_spots", p.display.feature_spots);
+    });
+  });
+}
+
+struct SettingsKeyError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+template <class E>
+concept OptionEnum = std::is_enum_v<E> && requires(E e) { enumEntries(e); };
+
+class Reader {
+ public:
+  explicit Reader(const json& root) { stack_.push_back({&root, "", {}}); }
+
+  template <class Fn>
+  void object(const char* key, Fn&& body) {
+    const json* child = enter(key);
+    if (!child) return;
+    if (!child->is_object()) fail(path(key), "expected an object");
+    stack_.push_back({child, path(key), {}});
+    body();
+    finishObject();
+    stack_.pop_back();
+  }
+
+  void field(const char* key, bool& value) {
+    if (const json* j = enter(key)) {
+      if (!j->is_boolean()) fail(path(key), "expected true or false");
+      value = j->get<bool>();
+    }
+  }
+
+  template <class E>
+    requires OptionEnum<E>
+  void field(const char* key, E& value) {
+    if (const json* j = enter(key)) {
+      if (!j->is_string()) fail(path(key), "expected a string, one of: " + enumChoices<E>());
+      const auto parsed = parseEnum<E>(j->get<std::string>());
+      if (!parsed)
+        fail(path(key), "unknown value \"" + j->get<std::string>() + "\" (expected one of: " +
+                            enumChoices<E>() + ")");
+      value = *parsed;
+    }
+  }
+
+  template <class T>
+    requires std::is_arithmetic_v<T>
+  void field(const char* key, T& value, T lo, T hi) {
+    if (const json* j = enter(key)) value = number<T>(*j, path(key), lo, hi);
+  }
+
+  template <class T, std::size_t N>
+  void field(const char* key, std::array<T, N>& value, T lo, T hi) {
+    const json* j = enter(key);
+    if (!j) return;
+    if (!j->is_array() || j->size() != N)
+      fail(path(key), "expected an array of " + std::to_string(N) + " numbers");
+    for (std::size_t i = 0; i < N; ++i)
+      value[i] = number<T>((*j)[i], path(key) + "[" + std::to_string(i) + "]", lo, hi);
+  }
+
+  void finishObject() {
+    const Level& level = stack_.back();
+    for (const auto& [k, unused] : level.node->items()) {
+      bool known = false;
+      for (const auto& seen : level.seen) known = known || seen == k;
+      if (!known) fail(level.path.empty() ? k : level.path + "." + k, "unknown key");
+    }
+  }
+
+ private:
+  struct Level {
+    const json* node;
+    std::string path;
+    std::vector<std::string> seen;
+  };
+
+  const json* enter(const char* key) {
+    Level& level = stack_.back();
+    level.seen.emplace_back(key);
+    const auto it = level.node->find(key);
+    return it == level.node->end() ? nullptr : &*it;
+  }
+
+  std::string path(const char* key) const {
+    return stack_.back().path.empty() ? std::string(key) : stack_.back().path + "." + key;
+  }
+
+  template <class T>
+  static T number(const json& j, const std::string& where, T lo, T hi) {
+    if constexpr (std::is_integral_v<T>) {
+      if (!j.is_number_integer()) fail(where, "expected a whole number");
+      const auto v = j.get<long long>();
+      if (v < static_cast<long long>(lo) || v > static_cast<long long>(hi))
+        fail(where, "value " + std::to_string(v) + " out of range [" + std::to_string(lo) + ", " +
+                        std::to_string(hi) + "]");
+      return static_cast<T>(v);
+    } else {
+      if (!j.is_number()) fail(where, "expected a number");
+      const double v = j.get<double>();
+      if (!(v >= lo && v <= hi)) fail(where, "value " + j.dump() + " out of range");
+      return static_cast<T>(v);
+    }
+  }
+
+  [[noreturn]] static void fail(const std::string& where, const std::string& what) {
+    throw SettingsKeyError(where + ": " + what);
+  }
+
+  std::vector<Level> stack_;
+};
+
+class Writer {
+ public:
+  Writer() { stack_.push_back(&root_); }
+
+  template <class Fn>
+  void object(const char* key, Fn&& body) {
+    json& child = (*stack_.back())[key] = json::object();
+    stack_.push_back(&child);
+    body();
+    stack_.pop_back();
+  }
+
+  void field(const char* key, bool& value) { (*stack_.back())[key] = value; }
+
+  template <class E>
+    requires OptionEnum<E>
+  void field(const char* key, E& value) {
+    (*stack_.back())[key] = std::string(enumName(value));
+  }
+
+  template <class T>
+  void field(const char* key, T& value, T, T) {
+    (*stack_.back())[key] = value;
+  }
+
+  template <class T, std::size_t N>
+  void field(const char* key, std::array<T, N>& value, T, T) {
+    (*stack_.back())[key] = value;
+  }
+
+  const json& root() const { return root_; }
+
+ private:
+  json root_ = json::object();
+  std::vector<json*> stack_;
+};
+
+}  // namespace
+
+Status settingsFromJson(std::string_view json_text, Settings& out, std::string& error) {
+  json root;
+  try {
+    root = json::parse(json_text);
+  } catch (const json::parse_error& e) {
+    error = std::string("not valid JSON: ") + e.what();
+    return Status::InvalidSettings;
+  }
+  if (!root.is_object()) {
+    error = "the settings must be a JSON object";
+    return Status::InvalidSettings;
+  }
+  Settings parsed = out;
+  try {
+    Reader reader(root);
+    visitSettings(reader, parsed);
+    reader.finishObject();
+  } catch (const SettingsKeyError& e) {
+    error = e.what();
+    return Status::InvalidSettings;
+  }
+  out = parsed;
+  return Status::Ok;
+}
+
+std::string settingsToJson(const Settings& settings) {
+  Settings copy = settings;  // the visitor takes non-const references
+  Writer writer;
+  visitSettings(writer, copy);
+  return writer.root().dump(2) + "\n";
+}
+
+Status loadSettings(const std::string& path, Settings& out, std::string& error) {
+  std::string text;
+  if (!readWholeFile(path, text, error)) return Status::FileNotFound;
+  std::string detail;
+  const Status s = settingsFromJson(text, out, detail);
+  if (!ok(s)) error = path + ": " + detail;
+  return s;
+}
+
+Status saveSettings(const std::string& path, const Settings& settings, std::string& error) {
+  return writeFileAtomically(path, settingsToJson(settings), error) ? Status::Ok : Status::FileNotWritable;
+}
+
+}  // namespace imagepro

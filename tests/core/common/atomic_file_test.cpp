@@ -1,0 +1,52 @@
+#include "core/common/atomic_file.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace imagepro {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path freshDir(const char* name) {
+  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(AtomicFile, WritesAndReplaces) {
+  const fs::path dir = freshDir("atomic_write");
+  const std::string path = (dir / "a.json").string();
+  std::string err, back;
+  ASSERT_TRUE(writeFileAtomically(path, "first", err)) << err;
+  ASSERT_TRUE(writeFileAtomically(path, "second", err, /*keep_backup=*/true)) << err;
+  ASSERT_TRUE(readWholeFile(path, back, err));
+  EXPECT_EQ(back, "second");
+  ASSERT_TRUE(readWholeFile(path + ".bak", back, err));
+  EXPECT_EQ(back, "first");
+  // No temporary files left behind.
+  int count = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++count;
+  EXPECT_EQ(count, 2);
+}
+
+TEST(AtomicFile, FailedWriteKeepsOldFile) {
+  const fs::path dir = freshDir("atomic_fail");
+  std::string err;
+  // Writing into a folder that does not exist fails and names the file.
+  EXPECT_FALSE(writeFileAtomically((dir / "missing" / "x.json").string(), "x", err));
+  EXPECT_NE(err.find("x.json"), std::string::npos);
+}
+
+TEST(AtomicFile, ReadErrorsNameTheFile) {
+  std::string content, err;
+  EXPECT_FALSE(readWholeFile("/nonexistent/settings.json", content, err));
+  EXPECT_NE(err.find("/nonexistent/settings.json"), std::string::npos);
+  EXPECT_FALSE(readWholeFile(freshDir("atomic_dir").string(), content, err));
+  EXPECT_NE(err.find("folder"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace imagepro

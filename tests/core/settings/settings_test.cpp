@@ -1,0 +1,115 @@
+#include "core/settings/settings.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "core/common/atomic_file.h"
+#include "core/settings/enum_names.h"
+
+namespace imagepro {
+namespace {
+
+std::string loadError(const std::string& json) {
+  Settings s;
+  std::string err;
+  EXPECT_EQ(settingsFromJson(json, s, err), Status::InvalidSettings) << json;
+  return err;
+}
+
+TEST(Settings, DefaultsRoundTrip) {
+  Settings a;
+  a.pipeline.threshold.method = ThresholdMethod::Manual;
+  a.pipeline.threshold.manual_value = 77;
+  a.camera.distortion = kThesisCameraDistortion;
+  a.virtual_scene.initial_pose.rz_deg = 33;
+  a.pipeline.tracking.mode = TrackingMode::Parameters3D;
+  const std::string text = settingsToJson(a);
+  Settings b;
+  std::string err;
+  ASSERT_EQ(settingsFromJson(text, b, err), Status::Ok) << err;
+  EXPECT_EQ(settingsToJson(b), text);
+  EXPECT_EQ(b.pipeline.threshold.manual_value, 77);
+  EXPECT_DOUBLE_EQ(b.camera.distortion.k2, kThesisCameraDistortion.k2);
+}
+
+TEST(Settings, ArchitectureExampleLoads) {
+  const char* text = R"({
+    "camera": {"width": 640, "height": 480, "pixel_size_mm": [0.01, 0.01],
+               "image_plane_distance_mm": 8.0, "principal_point_px": [319.5, 239.5],
+               "distortion": {"k1": 0.0, "k2": 0.0, "p1": 0.0, "p2": 0.0}},
+    "target": {"radius_mm": 50.0, "spot_radius_mm": 6.0, "spot_offset_mm": 25.0},
+    "pattern": {"spot_spacing_mm": 25.0, "spot_radius_mm": 4.0, "columns": 61, "rows": 49, "card_size_mm": 130.0}
+  })";
+  Settings s;
+  std::string err;
+  ASSERT_EQ(settingsFromJson(text, s, err), Status::Ok) << err;
+  EXPECT_EQ(s.pattern.columns, 61);
+}
+
+TEST(Settings, MissingKeysKeepDefaults) {
+  Settings s;
+  std::string err;
+  ASSERT_EQ(settingsFromJson(R"({"target": {"radius_mm": 40}})", s, err), Status::Ok);
+  EXPECT_DOUBLE_EQ(s.target.radius_mm, 40.0);
+  EXPECT_DOUBLE_EQ(s.target.spot_offset_mm, TargetGeometry{}.spot_offset_mm);
+  EXPECT_EQ(s.camera.width, 640);
+}
+
+TEST(Settings, ErrorsNameTheKey) {
+  EXPECT_NE(loadError(R"({"camera": {"widht": 640}})").find("camera.widht: unknown key"), std::string::npos);
+  EXPECT_NE(loadError(R"({"colour": 1})").find("colour: unknown key"), std::string::npos);
+  EXPECT_NE(loadError(R"({"camera": {"width": "wide"}})").find("camera.width"), std::string::npos);
+  EXPECT_NE(loadError(R"({"camera": {"width": 6.5}})").find("whole number"), std::string::npos);
+  EXPECT_NE(loadError(R"({"camera": {"pixel_size_mm": [0.01]}})").find("camera.pixel_size_mm"), std::string::npos);
+  EXPECT_NE(loadError(R"({"pipeline": {"threshold": {"method": "otsu"}}})").find("at-orig"), std::string::npos);
+  EXPECT_NE(loadError(R"({"pipeline": {"threshold": {"value": 300}}})").find("pipeline.threshold.value"), std::string::npos);
+  EXPECT_NE(loadError(R"({"target": 5})").find("target: expected an object"), std::string::npos);
+  EXPECT_NE(loadError(R"({"camera": {"width": 640,)").find("not valid JSON"), std::string::npos);
+  EXPECT_NE(loadError("[1,2]").find("JSON object"), std::string::npos);
+  EXPECT_NE(loadError(R"({"pipeline": {"reconstruction": {"distortion_correction": 1}}})").find("true or false"), std::string::npos);
+}
+
+TEST(Settings, FailedLoadLeavesSettingsUntouched) {
+  Settings s;
+  s.target.radius_mm = 42;
+  std::string err;
+  EXPECT_EQ(settingsFromJson(R"({"target": {"radius_mm": 10, "bogus": 1}})", s, err), Status::InvalidSettings);
+  EXPECT_DOUBLE_EQ(s.target.radius_mm, 42.0);
+}
+
+TEST(Settings, SaveAndLoadFile) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / "settings";
+  fs::create_directories(dir);
+  const std::string path = (dir / "s.json").string();
+  Settings a;
+  a.pattern.rows = 7;
+  std::string err;
+  ASSERT_EQ(saveSettings(path, a, err), Status::Ok) << err;
+  Settings b;
+  ASSERT_EQ(loadSettings(path, b, err), Status::Ok) << err;
+  EXPECT_EQ(b.pattern.rows, 7);
+  // A malformed file is reported with its path and key.
+  ASSERT_TRUE(writeFileAtomically(path, R"({"pattern": {"rows": -1}})", err));
+  EXPECT_EQ(loadSettings(path, b, err), Status::InvalidSettings);
+  EXPECT_NE(err.find("s.json"), std::string::npos);
+  EXPECT_NE(err.find("pattern.rows"), std::string::npos);
+  EXPECT_EQ(loadSettings((dir / "none.json").string(), b, err), Status::FileNotFound);
+}
+
+TEST(Settings, ShippedDefaultFileMatchesDefaults) {
+  Settings shipped;
+  std::string err;
+  ASSERT_EQ(loadSettings(std::string(IMAGEPRO_DATA_DIR) + "/settings.json", shipped, err), Status::Ok) << err;
+  EXPECT_EQ(settingsToJson(shipped), settingsToJson(Settings{}));
+}
+
+TEST(EnumNames, EveryNameParsesBack) {
+  for (const auto& e : enumEntries(ContourMode{})) EXPECT_EQ(parseEnum<ContourMode>(e.name), e.value);
+  EXPECT_EQ(enumName(ThresholdMethod::AtOrig), "at-orig");
+  EXPECT_FALSE(parseEnum<EdgeMethod>("canny").has_value());
+}
+
+}  // namespace
+}  // namespace imagepro
