@@ -1,0 +1,64 @@
+#pragma once
+// What one pass of the pipeline produced for one frame: the status in words, what
+// each stage found, the pose, and how long each stage took. The GUI and the CLI
+// show it; data out writes it.
+#include <opencv2/core.hpp>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/common/geometry.h"
+#include "core/common/status.h"
+#include "core/ellipse/ellipse.h"
+#include "core/segmentation/histogram.h"
+#include "core/settings/options.h"
+
+namespace imagepro {
+
+// Per-stage wall times of one frame in microseconds (thesis figure 5.1 stages).
+enum class Stage : std::uint8_t { Grab, Crop, Threshold, Edges, Connectivity, Ellipse, Reconstruction, Tracking, kCount };
+inline constexpr std::size_t kStageCount = static_cast<std::size_t>(Stage::kCount);
+const char* stageName(Stage s);
+
+struct StageTimes {
+  std::array<double, kStageCount> us{};
+  double& operator[](Stage s) { return us[static_cast<std::size_t>(s)]; }
+  double operator[](Stage s) const { return us[static_cast<std::size_t>(s)]; }
+  double total() const;
+};
+
+// One target found in the frame, in full-image pixel coordinates.
+struct TargetSummary {
+  Ellipse ellipse;
+  double fit_error = 0.0;       // E_rel (direct fit) or 0
+  double sampson_px = 0.0;      // mean Sampson distance of the path to the ellipse
+  double bennett_score = 0.0, bennett_quality = 0.0, bennett_symmetry = 0.0;
+  cv::Rect bbox;
+};
+
+struct FrameResult {
+  std::int64_t index = 0;
+  double timestamp_s = 0.0;
+  std::string name;                 // file name for file input
+  Status status = Status::Ok;       // the first stage that failed, or Ok
+  ApplicationLevel reached = ApplicationLevel::Source;  // last stage that ran
+  cv::Size image_size;
+  cv::Rect search_region;           // estimated region (thesis: green), whole frame if untracked
+  cv::Rect detected_region;         // smallest box containing the target (thesis: blue)
+  int threshold = -1;
+  Histogram histogram{};
+  std::size_t edge_pixels = 0;
+  std::size_t paths = 0;
+  std::vector<TargetSummary> targets;
+  std::optional<Pose> pose;
+  std::optional<Pose> truth;        // virtual frames
+  // Undistorted features the pose was computed from, for display (full-image pixels).
+  std::vector<cv::Point2f> contour_points;
+  std::array<cv::Point2f, 2> spots{};  // centre, offset
+  StageTimes times;
+};
+
+}  // namespace imagepro
