@@ -19,6 +19,7 @@ StatusText text(Status s) {
     case Status::ThresholdUndefined: return {"ThresholdUndefined", "the histogram has fewer than two grey levels, so no threshold separates two classes"};
     case Status::UniformFrame: return {"UniformFrame", "the binary image is all black or all white"};
     case Status::NoEdges: return {"NoEdges", "no edge pixels were found"};
+    case Status::InvalidEdgeList: return {"InvalidEdgeList", "an edge pixel lies outside the image or is listed twice"};
     case Status::TooFewPoints: return {"TooFewPoints", "fewer than six contour points for an ellipse fit"};
     case Status::DegenerateFit: return {"DegenerateFit", "the contour points are collinear or degenerate"};
     case Status::NotAnEllipse: return {"NotAnEllipse", "the best conic through the points is not an ellipse"};

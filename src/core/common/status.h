@@ -20,6 +20,7 @@ enum class Status : std::uint8_t {
   UniformFrame,        // all black or all white after thresholding: nothing to segment
   // edges / connectivity
   NoEdges,
+  InvalidEdgeList,     // an edge pixel lies outside the image or is listed twice
   // ellipse detection
   TooFewPoints,
   DegenerateFit,       // collinear or otherwise rank-deficient points
