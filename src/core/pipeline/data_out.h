@@ -1,0 +1,44 @@
+#pragma once
+// Data out (thesis appendix A, "dataout.txt"): one CSV row per frame in the format of
+// ARCHITECTURE.md, followed by the timestamp, the estimated (searched) and detected
+// regions and the per-stage times. Each row is flushed as it is written, so a killed
+// process loses at most the frame in flight; an existing file is never overwritten.
+#include <cstdio>
+#include <string>
+
+#include "core/common/status.h"
+#include "core/pipeline/frame_result.h"
+
+namespace imagepro {
+
+enum class ExistingFile : std::uint8_t {
+  Fail,     // refuse: the caller asks the user
+  Append,   // add rows to the end (no second header)
+  NewName,  // write to "name-1.csv", "name-2.csv", ... instead
+};
+
+class DataOut {
+ public:
+  DataOut() = default;
+  ~DataOut();
+  DataOut(const DataOut&) = delete;
+  DataOut& operator=(const DataOut&) = delete;
+
+  // Opens `path`; `error` names the file and the reason on failure. The path actually
+  // written (after NewName) is path().
+  Status open(const std::string& path, ExistingFile existing, std::string& error);
+  bool isOpen() const { return file_ != nullptr; }
+  const std::string& path() const { return path_; }
+  // Writes and flushes one row; false (with the file closed) when the disk refuses.
+  bool write(const FrameResult& result, std::string& error);
+  void close();
+
+  static std::string header();
+  static std::string row(const FrameResult& result);
+
+ private:
+  std::FILE* file_ = nullptr;
+  std::string path_;
+};
+
+}  // namespace imagepro

@@ -1,0 +1,94 @@
+#include "core/pipeline/data_out.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/common/atomic_file.h"
+
+namespace imagepro {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path freshDir(const char* name) {
+  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string slurp(const fs::path& p) {
+  std::string s, err;
+  EXPECT_TRUE(readWholeFile(p.string(), s, err)) << err;
+  return s;
+}
+
+FrameResult okFrame(std::int64_t i) {
+  FrameResult r;
+  r.index = i;
+  r.timestamp_s = 0.04 * i;
+  r.status = Status::Ok;
+  r.pose = Pose{1, 2, 3, 4, 5, 600};
+  r.search_region = {10, 20, 30, 40};
+  r.detected_region = {12, 22, 20, 30};
+  return r;
+}
+
+TEST(DataOut, HeaderStartsWithTheArchitectureColumns) {
+  EXPECT_EQ(DataOut::header().rfind("frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,timestamp_s,", 0), 0u);
+}
+
+TEST(DataOut, WritesOneFlushedRowPerFrame) {
+  const fs::path dir = freshDir("dataout_rows");
+  DataOut out;
+  std::string err;
+  ASSERT_EQ(out.open((dir / "d.csv").string(), ExistingFile::Fail, err), Status::Ok) << err;
+  ASSERT_TRUE(out.write(okFrame(0), err));
+  FrameResult miss;
+  miss.index = 1;
+  miss.status = Status::NoTarget;
+  ASSERT_TRUE(out.write(miss, err));
+  // Flushed: readable before close.
+  std::istringstream lines(slurp(dir / "d.csv"));
+  std::string header, row0, row1;
+  std::getline(lines, header);
+  std::getline(lines, row0);
+  std::getline(lines, row1);
+  EXPECT_EQ(row0.rfind("0,ok,1.000000,2.000000,3.000000,4.000000,5.000000,600.000000,0.000000,10,20,30,40,12,22,20,30", 0), 0u);
+  EXPECT_EQ(row1.rfind("1,NoTarget,,,,,,,", 0), 0u);
+}
+
+TEST(DataOut, NeverOverwritesAnExistingFile) {
+  const fs::path dir = freshDir("dataout_existing");
+  const fs::path p = dir / "d.csv";
+  std::string err;
+  ASSERT_TRUE(writeFileAtomically(p.string(), "precious\n", err));
+  DataOut out;
+  EXPECT_EQ(out.open(p.string(), ExistingFile::Fail, err), Status::FileNotWritable);
+  EXPECT_NE(err.find("exists"), std::string::npos);
+  EXPECT_EQ(slurp(p), "precious\n");
+
+  ASSERT_EQ(out.open(p.string(), ExistingFile::NewName, err), Status::Ok);
+  EXPECT_EQ(fs::path(out.path()).filename(), "d-1.csv");
+  out.close();
+
+  ASSERT_EQ(out.open(p.string(), ExistingFile::Append, err), Status::Ok);
+  ASSERT_TRUE(out.write(okFrame(3), err));
+  out.close();
+  const std::string text = slurp(p);
+  EXPECT_EQ(text.rfind("precious\n3,ok,", 0), 0u);  // appended, no second header
+}
+
+TEST(DataOut, UnwritableFolderIsANamedError) {
+  DataOut out;
+  std::string err;
+  EXPECT_EQ(out.open("/nonexistent-folder/d.csv", ExistingFile::Fail, err), Status::FileNotWritable);
+  EXPECT_NE(err.find("/nonexistent-folder/d.csv"), std::string::npos);
+  EXPECT_FALSE(out.write(okFrame(0), err));
+}
+
+}  // namespace
+}  // namespace imagepro
