@@ -10,10 +10,11 @@ namespace imagepro {
 
 using Histogram = std::array<std::uint32_t, 256>;
 
-// Histogram of the whole CV_8UC1 image.
+// Histogram of the whole CV_8UC1 image (all zeros for an empty or non-CV_8UC1 image).
 void computeHistogram(const cv::Mat& grey, Histogram& hist);
 // Copies grey(roi) into `crop` (reusing its buffer) and builds its histogram in the same pass.
-// The roi is clipped to the image.
+// The roi is clipped to the image; an empty result gives an empty crop and a zero histogram.
+// `crop` may be a view into a larger reused allocation (see image_buffer.h): index it by row.
 void cropWithHistogram(const cv::Mat& grey, cv::Rect roi, cv::Mat& crop, Histogram& hist);
 
 }  // namespace imagepro
