@@ -5,6 +5,17 @@
 // with the camera's lens distortion applied. Binary mode gives the thesis's 0/255
 // image; grey mode gives anti-aliased 8-bit grey with optional blur, noise,
 // illumination gradient and clutter.
+//
+// Rendering is by inverse mapping, so the ground truth is exact: every image sample
+// (distorted pixel coordinates) is undistorted by inverting eq. 4.7 with Newton's
+// method, back-projected, and its ray intersected with the target plane (the pose
+// of ARCHITECTURE.md), where the point is classified. Binary mode samples pixel
+// centres. Grey mode averages supersampling^2 samples over the area of each pixel
+// that lies on an edge, then applies, in this order: illumination gradient (brightness
+// scaled by 1 + g * (u / (width - 1) - 0.5)), Gaussian blur, Gaussian noise.
+// Clutter (white bars and rectangles fixed in the image, placed from scene.seed) lies
+// behind the card, so it never overlaps it; it is drawn in both modes.
+// A target behind the camera or seen edge-on is simply not in the image.
 #include <opencv2/core.hpp>
 
 #include <cstdint>
@@ -19,5 +30,15 @@ namespace imagepro {
 void renderTarget(const CameraModel& camera, const TargetGeometry& target,
                   const VirtualSceneOptions& scene, const Pose& pose, cv::Mat& out,
                   std::uint64_t frame_seed = 0);
+
+// Renders the calibration pattern (thesis 4.3, ARCHITECTURE.md): a white sheet of
+// columns x rows spacings, carrying the target on its black card of side
+// pattern.card_size_mm at the centre and a grid of black spots centred on the target,
+// without the grid spots that would touch the card. `pose` is the target's pose.
+// Colours and effects as renderTarget (the sheet is white_level, beyond it the
+// background); scene.card_size_mm is not used.
+void renderPattern(const CameraModel& camera, const TargetGeometry& target,
+                   const PatternGeometry& pattern, const VirtualSceneOptions& scene,
+                   const Pose& pose, cv::Mat& out, std::uint64_t frame_seed = 0);
 
 }  // namespace imagepro

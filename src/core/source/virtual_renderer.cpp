@@ -1,0 +1,560 @@
+#include "core/source/virtual_renderer.h"
+
+#include <Eigen/Dense>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace imagepro {
+namespace {
+
+constexpr int kOutside = -1;  // a plane point beyond the card (target) or the sheet (pattern)
+
+// What lies in the target plane (mm, target frame) and its grey levels.
+struct PlaneScene {
+  double disk_r2 = 0;
+  double spot_r2 = 0;
+  double spot_offset = 0;
+  double card_half = 0;
+  bool pattern = false;
+  double sheet_hx = 0;
+  double sheet_hy = 0;
+  double spacing = 1;
+  double grid_spot_r2 = 0;
+  double columns = 1;
+  double rows = 1;
+  double col_centre = 0;  // (columns - 1) / 2: the grid is centred on the target
+  double row_centre = 0;
+  bool facing = true;  // the camera sees the printed side
+  int white = 255;
+  int black = 0;
+
+  // Half extents of everything that is not background.
+  double halfX() const { return pattern ? std::max(sheet_hx, card_half) : card_half; }
+  double halfY() const { return pattern ? std::max(sheet_hy, card_half) : card_half; }
+
+  int levelAt(double x, double y) const {
+    const double ax = std::abs(x);
+    const double ay = std::abs(y);
+    if (ax <= card_half && ay <= card_half) {
+      if (!facing) return black;
+      const double r2 = x * x + y * y;
+      if (r2 > disk_r2 || r2 < spot_r2) return black;
+      const double dx = x - spot_offset;
+      return dx * dx + y * y < spot_r2 ? black : white;
+    }
+    if (!pattern || ax > sheet_hx || ay > sheet_hy) return kOutside;
+    if (!facing) return black;
+    // Spots are smaller than half the spacing, so only the nearest grid node can hold x, y.
+    const double i = std::clamp(std::round(x / spacing + col_centre), 0.0, columns - 1.0);
+    const double j = std::clamp(std::round(y / spacing + row_centre), 0.0, rows - 1.0);
+    const double cx = (i - col_centre) * spacing;
+    const double cy = (j - row_centre) * spacing;
+    const double dx = x - cx;
+    const double dy = y - cy;
+    if (dx * dx + dy * dy >= grid_spot_r2) return white;
+    // A grid spot that would touch the card is left out.
+    const double gx = std::max(std::abs(cx) - card_half, 0.0);
+    const double gy = std::max(std::abs(cy) - card_half, 0.0);
+    return gx * gx + gy * gy <= grid_spot_r2 ? white : black;
+  }
+};
+
+// A white bar or rectangle fixed in the image (distorted pixel coordinates).
+struct ClutterShape {
+  double cu = 0, cv = 0;          // centre
+  double du = 1, dv = 0;          // unit direction of the long side
+  double half_len = 0, half_wid = 0;
+  int u_min = 0, u_max = -1, v_min = 0, v_max = -1;  // pixel bounding box (unclipped)
+
+  bool contains(double u, double v) const {
+    const double pu = u - cu;
+    const double pv = v - cv;
+    return std::abs(pu * du + pv * dv) <= half_len && std::abs(pv * du - pu * dv) <= half_wid;
+  }
+};
+
+// Uniform in [0, 1) from the generator's raw bits (portable across standard libraries,
+// unlike std::uniform_real_distribution).
+double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+void makeClutter(int count, unsigned seed, int width, int height, std::vector<ClutterShape>& shapes) {
+  shapes.clear();
+  std::mt19937_64 rng(0x9e3779b97f4a7c15ULL ^ seed);
+  const double size = std::min(width, height);
+  for (int k = 0; k < count; ++k) {
+    ClutterShape s;
+    s.cu = uniform01(rng) * width - 0.5;
+    s.cv = uniform01(rng) * height - 0.5;
+    const double angle = uniform01(rng) * M_PI;
+    s.du = std::cos(angle);
+    s.dv = std::sin(angle);
+    const double a = uniform01(rng);
+    const double b = uniform01(rng);
+    if (k % 2 == 0) {  // bar: long and thin
+      s.half_len = 0.5 * size * (0.2 + 0.4 * a);
+      s.half_wid = std::max(1.0, 0.5 * size * (0.008 + 0.025 * b));
+    } else {  // rectangle
+      s.half_len = 0.5 * size * (0.05 + 0.15 * a);
+      s.half_wid = 0.5 * size * (0.05 + 0.15 * b);
+    }
+    const double eu = std::abs(s.du) * s.half_len + std::abs(s.dv) * s.half_wid;
+    const double ev = std::abs(s.dv) * s.half_len + std::abs(s.du) * s.half_wid;
+    s.u_min = static_cast<int>(std::floor(s.cu - eu)) - 1;
+    s.u_max = static_cast<int>(std::ceil(s.cu + eu)) + 1;
+    s.v_min = static_cast<int>(std::floor(s.cv - ev)) - 1;
+    s.v_max = static_cast<int>(std::ceil(s.cv + ev)) + 1;
+    shapes.push_back(s);
+  }
+}
+
+// Undistorted position q (relative to the principal point) with q + delta(q) = p:
+// Newton's method on eq. 4.7, starting from `q`. False when it does not converge to a
+// solution on the unfolded branch (positive Jacobian): with strong distortion, image
+// points beyond the fold of the model have no undistorted position.
+bool undistortRelative(const Distortion& d, const Eigen::Vector2d& p, Eigen::Vector2d& q) {
+  for (int it = 0; it < 30; ++it) {
+    const double u = q.x();
+    const double v = q.y();
+    const double r2 = u * u + v * v;
+    const double radial = d.k1 * r2 + d.k2 * r2 * r2;
+    const double dradial = d.k1 + 2.0 * d.k2 * r2;  // d(radial)/d(r2)
+    const Eigen::Vector2d f = q + distortionDelta(d, q) - p;
+    const double j00 = 1.0 + radial + 2.0 * u * u * dradial + 2.0 * d.p1 * v + 6.0 * d.p2 * u;
+    const double j01 = 2.0 * u * v * dradial + 2.0 * d.p1 * u + 2.0 * d.p2 * v;  // = j10
+    const double j11 = 1.0 + radial + 2.0 * v * v * dradial + 6.0 * d.p1 * v + 2.0 * d.p2 * u;
+    const double det = j00 * j11 - j01 * j01;
+    if (!(det > 1e-9) || !(j00 > 0.0)) return false;
+    if (f.squaredNorm() < 1e-20) return true;  // 1e-10 px
+    q -= Eigen::Vector2d((j11 * f.x() - j01 * f.y()) / det, (j00 * f.y() - j01 * f.x()) / det);
+  }
+  return false;
+}
+
+// As above from the best start available: `guess` if it converges, else p itself.
+bool undistortFrom(const Distortion& d, const Eigen::Vector2d& p, const Eigen::Vector2d& guess, Eigen::Vector2d& q) {
+  q = guess;
+  if (undistortRelative(d, p, q)) return true;
+  q = p;
+  return undistortRelative(d, p, q);
+}
+
+// Per-camera data, kept between frames: the ray through every pixel centre (only
+// with distortion) and the box of ideal pixel coordinates the image can see.
+struct CameraCache {
+  bool valid = false;
+  int width = 0, height = 0;
+  double fu = 0, fv = 0, u0 = 0, v0 = 0;
+  Distortion distortion;
+  cv::Mat rays;  // CV_64FC2: (X/Z, Y/Z) of the ray through each pixel centre, NaN if none
+  bool invertible = true;  // every image point has an undistorted position
+  double ideal_u_min = 0, ideal_u_max = 0, ideal_v_min = 0, ideal_v_max = 0;
+
+  bool matches(const CameraModel& c) const {
+    return valid && width == c.width && height == c.height && fu == c.fu() && fv == c.fv() && u0 == c.u0() &&
+           v0 == c.v0() && distortion.k1 == c.distortion.k1 && distortion.k2 == c.distortion.k2 &&
+           distortion.p1 == c.distortion.p1 && distortion.p2 == c.distortion.p2;
+  }
+
+  void update(const CameraModel& c) {
+    if (matches(c)) return;
+    width = c.width;
+    height = c.height;
+    fu = c.fu();
+    fv = c.fv();
+    u0 = c.u0();
+    v0 = c.v0();
+    distortion = c.distortion;
+    const double margin = 2.0;
+    invertible = true;
+    if (distortion.isZero()) {
+      rays.release();
+      ideal_u_min = -0.5 - margin;
+      ideal_u_max = width - 0.5 + margin;
+      ideal_v_min = -0.5 - margin;
+      ideal_v_max = height - 0.5 + margin;
+    } else {
+      rays.create(height, width, CV_64FC2);
+      for (int v = 0; v < height; ++v) {
+        auto* row = rays.ptr<cv::Vec2d>(v);
+        Eigen::Vector2d q(-u0, v - v0);
+        bool have_previous = false;
+        for (int u = 0; u < width; ++u) {
+          const Eigen::Vector2d p(u - u0, v - v0);
+          const Eigen::Vector2d guess = have_previous ? Eigen::Vector2d(q.x() + 1.0, q.y()) : p;
+          have_previous = undistortFrom(distortion, p, guess, q);
+          if (have_previous) {
+            row[u] = cv::Vec2d(q.x() / fu, q.y() / fv);
+          } else {
+            row[u] = cv::Vec2d(NAN, NAN);  // sees nothing: NaN fails every plane test
+            invertible = false;
+          }
+        }
+      }
+      // The image border, undistorted, bounds what the image can see (the distortion
+      // is a smooth one-to-one map over the image).
+      ideal_u_min = ideal_v_min = INFINITY;
+      ideal_u_max = ideal_v_max = -INFINITY;
+      auto take = [&](double u, double v) {
+        const Eigen::Vector2d p(u - u0, v - v0);
+        Eigen::Vector2d q;
+        if (!undistortFrom(distortion, p, p, q)) {
+          invertible = false;
+          return;
+        }
+        ideal_u_min = std::min(ideal_u_min, q.x() + u0);
+        ideal_u_max = std::max(ideal_u_max, q.x() + u0);
+        ideal_v_min = std::min(ideal_v_min, q.y() + v0);
+        ideal_v_max = std::max(ideal_v_max, q.y() + v0);
+      };
+      const int n = 64;
+      for (int k = 0; k <= n; ++k) {
+        const double u = -0.5 + width * static_cast<double>(k) / n;
+        const double v = -0.5 + height * static_cast<double>(k) / n;
+        take(u, -0.5);
+        take(u, height - 0.5);
+        take(-0.5, v);
+        take(width - 0.5, v);
+      }
+      ideal_u_min -= margin;
+      ideal_u_max += margin;
+      ideal_v_min -= margin;
+      ideal_v_max += margin;
+    }
+    valid = true;
+  }
+};
+
+// Everything reused from frame to frame by one thread.
+struct Workspace {
+  CameraCache camera;
+  bool clutter_valid = false;
+  int clutter_count = 0;
+  unsigned clutter_seed = 0;
+  int clutter_width = 0, clutter_height = 0;
+  std::vector<ClutterShape> clutter;
+  cv::Mat levels;  // CV_8UC1, pixel-centre levels (grey mode)
+  cv::Mat grey;    // CV_32FC1, anti-aliased image before conversion
+  cv::Mat noise;   // CV_32FC1
+
+  const std::vector<ClutterShape>& clutterFor(const VirtualSceneOptions& scene, int width, int height) {
+    const int count = std::max(0, scene.clutter);
+    if (!clutter_valid || count != clutter_count || scene.seed != clutter_seed || width != clutter_width ||
+        height != clutter_height) {
+      makeClutter(count, scene.seed, width, height, clutter);
+      clutter_valid = true;
+      clutter_count = count;
+      clutter_seed = scene.seed;
+      clutter_width = width;
+      clutter_height = height;
+    }
+    return clutter;
+  }
+};
+
+Workspace& workspace() {
+  thread_local Workspace ws;
+  return ws;
+}
+
+// One frame's rendering state: the camera, the plane's mapping and the scene.
+class FrameRenderer {
+ public:
+  FrameRenderer(const CameraModel& cam, const CameraCache& cache, const PlaneScene& plane, const Pose& pose,
+                const std::vector<ClutterShape>& clutter, int clutter_level, int background)
+      : cam_(cam), cache_(cache), plane_(plane), clutter_(clutter), clutter_level_(clutter_level),
+        background_(background) {
+    R_ = rotationMatrix(pose);
+    T_ = translation(pose);
+    // A camera ray d = (X/Z, Y/Z, 1) meets the plane at lambda * d = x r1 + y r2 + T, so
+    // (x, y, 1) / lambda = M^-1 d with M = [r1 r2 T]; lambda > 0 means in front.
+    const double distance = R_.col(2).dot(T_);  // signed distance of the camera from the plane
+    plane_.facing = distance > 0.0;
+    visible_ = std::abs(distance) > 1e-9 * std::max(1.0, T_.norm());  // not edge-on
+    if (visible_) {
+      Eigen::Matrix3d M;
+      M << R_.col(0), R_.col(1), T_;
+      G_ = M.inverse();
+    }
+    roi_ = computeRoi();
+  }
+
+  // Pixels outside this rectangle see no part of the plane scene.
+  const cv::Rect& roi() const { return roi_; }
+
+  // Level at a sample point (u, v) of the image whose camera ray is (xn, yn, 1).
+  int levelOfRay(double xn, double yn, double u, double v) const {
+    if (visible_) {
+      const double w = G_(2, 0) * xn + G_(2, 1) * yn + G_(2, 2);
+      if (w > 0.0) {
+        const double a = G_(0, 0) * xn + G_(0, 1) * yn + G_(0, 2);
+        const double b = G_(1, 0) * xn + G_(1, 1) * yn + G_(1, 2);
+        const int level = plane_.levelAt(a / w, b / w);
+        if (level != kOutside) return level;
+      }
+    }
+    return clutterLevel(u, v);
+  }
+
+  // Level behind the plane scene: clutter or background.
+  int clutterLevel(double u, double v) const {
+    for (const auto& s : clutter_)
+      if (s.contains(u, v)) return clutter_level_;
+    return background_;
+  }
+
+  // Ray through the pixel centre (u, v).
+  void pixelRay(int u, int v, double& xn, double& yn) const {
+    if (cache_.rays.empty()) {
+      xn = (u - cache_.u0) / cache_.fu;
+      yn = (v - cache_.v0) / cache_.fv;
+    } else {
+      const cv::Vec2d r = cache_.rays.at<cv::Vec2d>(v, u);
+      xn = r[0];
+      yn = r[1];
+    }
+  }
+
+  // Ray through any image point; `near_xn`, `near_yn` is the ray of a nearby pixel centre.
+  void sampleRay(double u, double v, double near_xn, double near_yn, double& xn, double& yn) const {
+    if (cache_.rays.empty()) {
+      xn = (u - cache_.u0) / cache_.fu;
+      yn = (v - cache_.v0) / cache_.fv;
+      return;
+    }
+    const Eigen::Vector2d p(u - cache_.u0, v - cache_.v0);
+    const Eigen::Vector2d start(near_xn * cache_.fu + (u - std::round(u)), near_yn * cache_.fv + (v - std::round(v)));
+    Eigen::Vector2d q;
+    if (!undistortFrom(cache_.distortion, p, start.allFinite() ? start : p, q)) {
+      xn = yn = NAN;
+      return;
+    }
+    xn = q.x() / cache_.fu;
+    yn = q.y() / cache_.fv;
+  }
+
+  // Fills `out` (CV_8UC1) with pixel-centre levels.
+  void renderCentres(cv::Mat& out) const {
+    out.setTo(cv::Scalar(background_));
+    const cv::Rect image(0, 0, out.cols, out.rows);
+    for (const auto& s : clutter_) {
+      const cv::Rect box = cv::Rect(s.u_min, s.v_min, s.u_max - s.u_min + 1, s.v_max - s.v_min + 1) & image;
+      for (int v = box.y; v < box.y + box.height; ++v) {
+        auto* row = out.ptr<std::uint8_t>(v);
+        for (int u = box.x; u < box.x + box.width; ++u)
+          if (s.contains(u, v)) row[u] = static_cast<std::uint8_t>(clutter_level_);
+      }
+    }
+    for (int v = roi_.y; v < roi_.y + roi_.height; ++v) {
+      auto* row = out.ptr<std::uint8_t>(v);
+      for (int u = roi_.x; u < roi_.x + roi_.width; ++u) {
+        double xn, yn;
+        pixelRay(u, v, xn, yn);
+        row[u] = static_cast<std::uint8_t>(levelOfRay(xn, yn, u, v));
+      }
+    }
+  }
+
+  // Mean level over the pixel's area, n x n samples.
+  float pixelAverage(int u, int v, int n) const {
+    double cxn, cyn;
+    pixelRay(u, v, cxn, cyn);
+    int sum = 0;
+    for (int j = 0; j < n; ++j) {
+      const double sv = v + (j + 0.5) / n - 0.5;
+      for (int i = 0; i < n; ++i) {
+        const double su = u + (i + 0.5) / n - 0.5;
+        double xn, yn;
+        sampleRay(su, sv, cxn, cyn, xn, yn);
+        sum += levelOfRay(xn, yn, su, sv);
+      }
+    }
+    return static_cast<float>(sum) / static_cast<float>(n * n);
+  }
+
+ private:
+  // The image rectangle that can see the plane scene: its extent projected with the
+  // distortion, padded so that every pixel whose area touches it is inside.
+  cv::Rect computeRoi() const {
+    const cv::Rect image(0, 0, cam_.width, cam_.height);
+    if (!visible_) return {};
+    // Beyond the fold of an extreme distortion model the box below cannot be trusted.
+    if (!cache_.invertible) return image;
+    const double hx = plane_.halfX();
+    const double hy = plane_.halfY();
+    double iu_min = INFINITY, iu_max = -INFINITY, iv_min = INFINITY, iv_max = -INFINITY;
+    for (int sx = -1; sx <= 1; sx += 2) {
+      for (int sy = -1; sy <= 1; sy += 2) {
+        const Eigen::Vector3d P = R_ * Eigen::Vector3d(sx * hx, sy * hy, 0.0) + T_;
+        if (P.z() <= 1e-9) return image;  // part of it reaches behind the camera: unbounded
+        const Eigen::Vector2d q = projectIdeal(cam_, P);
+        iu_min = std::min(iu_min, q.x());
+        iu_max = std::max(iu_max, q.x());
+        iv_min = std::min(iv_min, q.y());
+        iv_max = std::max(iv_max, q.y());
+      }
+    }
+    iu_min = std::max(iu_min, cache_.ideal_u_min);
+    iu_max = std::min(iu_max, cache_.ideal_u_max);
+    iv_min = std::max(iv_min, cache_.ideal_v_min);
+    iv_max = std::min(iv_max, cache_.ideal_v_max);
+    if (iu_min > iu_max || iv_min > iv_max) return {};
+    double u_min = iu_min, u_max = iu_max, v_min = iv_min, v_max = iv_max;
+    if (!cam_.distortion.isZero()) {
+      // The distorted image of the ideal box is bounded by the image of its border.
+      u_min = v_min = INFINITY;
+      u_max = v_max = -INFINITY;
+      const int n = 32;
+      auto take = [&](double u, double v) {
+        const Eigen::Vector2d d = distortPixel(cam_, Eigen::Vector2d(u, v));
+        u_min = std::min(u_min, d.x());
+        u_max = std::max(u_max, d.x());
+        v_min = std::min(v_min, d.y());
+        v_max = std::max(v_max, d.y());
+      };
+      for (int k = 0; k <= n; ++k) {
+        const double u = iu_min + (iu_max - iu_min) * k / n;
+        const double v = iv_min + (iv_max - iv_min) * k / n;
+        take(u, iv_min);
+        take(u, iv_max);
+        take(iu_min, v);
+        take(iu_max, v);
+      }
+    }
+    const double pad = 2.0;
+    const double lo_u = std::max(std::floor(u_min - pad), -1.0);
+    const double hi_u = std::min(std::ceil(u_max + pad), static_cast<double>(cam_.width));
+    const double lo_v = std::max(std::floor(v_min - pad), -1.0);
+    const double hi_v = std::min(std::ceil(v_max + pad), static_cast<double>(cam_.height));
+    if (lo_u > hi_u || lo_v > hi_v) return {};
+    const cv::Rect box(static_cast<int>(lo_u), static_cast<int>(lo_v), static_cast<int>(hi_u - lo_u) + 1,
+                       static_cast<int>(hi_v - lo_v) + 1);
+    return box & image;
+  }
+
+  const CameraModel& cam_;
+  const CameraCache& cache_;
+  PlaneScene plane_;
+  const std::vector<ClutterShape>& clutter_;
+  int clutter_level_;
+  int background_;
+  Eigen::Matrix3d R_;
+  Eigen::Vector3d T_;
+  Eigen::Matrix3d G_ = Eigen::Matrix3d::Zero();
+  bool visible_ = false;
+  cv::Rect roi_;
+};
+
+int clampLevel(int level) { return std::clamp(level, 0, 255); }
+
+void render(const CameraModel& cam, PlaneScene plane, const VirtualSceneOptions& scene, const Pose& pose,
+            cv::Mat& out, std::uint64_t frame_seed) {
+  const int width = std::max(cam.width, 0);
+  const int height = std::max(cam.height, 0);
+  out.create(height, width, CV_8UC1);
+  if (width == 0 || height == 0) return;
+
+  Workspace& ws = workspace();
+  ws.camera.update(cam);
+  const auto& clutter = ws.clutterFor(scene, width, height);
+
+  const bool binary = scene.mode == RenderMode::Binary;
+  plane.white = binary ? 255 : clampLevel(scene.white_level);
+  plane.black = binary ? 0 : clampLevel(scene.black_level);
+  const int background = binary ? 0 : clampLevel(scene.background_level);
+  const int clutter_level = plane.white;
+  // When the card looks like the background, only the disk needs the full test.
+  if (!plane.pattern && clutter.empty() && plane.black == background)
+    plane.card_half = std::sqrt(plane.disk_r2);
+
+  const FrameRenderer renderer(cam, ws.camera, plane, pose, clutter, clutter_level, background);
+  if (binary) {
+    renderer.renderCentres(out);
+    return;
+  }
+
+  // Grey: pixel-centre levels, then anti-aliasing where a pixel differs from a neighbour
+  // (a straight edge crossing a pixel always separates two of the 3x3 centres around it).
+  cv::Mat& levels = ws.levels;
+  levels.create(height, width, CV_8UC1);
+  renderer.renderCentres(levels);
+  cv::Mat& grey = ws.grey;
+  levels.convertTo(grey, CV_32F);
+  cv::Rect scan = clutter.empty() ? renderer.roi() : cv::Rect(0, 0, width, height);
+  if (!scan.empty()) scan = cv::Rect(scan.x - 1, scan.y - 1, scan.width + 2, scan.height + 2) & cv::Rect(0, 0, width, height);
+  const int n = std::max(1, scene.supersampling);
+  for (int v = scan.y; v < scan.y + scan.height; ++v) {
+    const auto* above = levels.ptr<std::uint8_t>(std::max(v - 1, 0));
+    const auto* here = levels.ptr<std::uint8_t>(v);
+    const auto* below = levels.ptr<std::uint8_t>(std::min(v + 1, height - 1));
+    auto* grey_row = grey.ptr<float>(v);
+    for (int u = scan.x; u < scan.x + scan.width; ++u) {
+      const int l = std::max(u - 1, 0);
+      const int r = std::min(u + 1, width - 1);
+      const std::uint8_t c = here[u];
+      const bool edge = above[l] != c || above[u] != c || above[r] != c || here[l] != c || here[r] != c ||
+                        below[l] != c || below[u] != c || below[r] != c;
+      if (edge) grey_row[u] = renderer.pixelAverage(u, v, n);
+    }
+  }
+
+  if (scene.illumination_gradient != 0.0) {
+    const double g = scene.illumination_gradient;
+    const double span = std::max(width - 1, 1);
+    for (int v = 0; v < height; ++v) {
+      auto* row = grey.ptr<float>(v);
+      for (int u = 0; u < width; ++u) row[u] *= static_cast<float>(1.0 + g * (u / span - 0.5));
+    }
+  }
+  if (scene.blur_sigma_px > 0.0)
+    cv::GaussianBlur(grey, grey, cv::Size(0, 0), scene.blur_sigma_px, scene.blur_sigma_px, cv::BORDER_REPLICATE);
+  if (scene.noise_sigma > 0.0) {
+    // The same scene seed and frame seed give the same noise.
+    const std::uint64_t state =
+        (0x2545f4914f6cdd1dULL * (frame_seed + 1)) ^ ((static_cast<std::uint64_t>(scene.seed) << 32) | 0x5bd1e995u);
+    cv::RNG rng(state);
+    ws.noise.create(height, width, CV_32FC1);
+    rng.fill(ws.noise, cv::RNG::NORMAL, 0.0, scene.noise_sigma);
+    grey += ws.noise;
+  }
+  grey.convertTo(out, CV_8U);  // rounds and saturates to 0..255
+}
+
+PlaneScene targetPlane(const TargetGeometry& target, double card_size_mm) {
+  PlaneScene p;
+  p.disk_r2 = target.radius_mm * target.radius_mm;
+  p.spot_r2 = target.spot_radius_mm * target.spot_radius_mm;
+  p.spot_offset = target.spot_offset_mm;
+  // The card carries the whole disk, whatever size it is given.
+  p.card_half = std::max(0.5 * card_size_mm, target.radius_mm);
+  return p;
+}
+
+}  // namespace
+
+void renderTarget(const CameraModel& camera, const TargetGeometry& target, const VirtualSceneOptions& scene,
+                  const Pose& pose, cv::Mat& out, std::uint64_t frame_seed) {
+  render(camera, targetPlane(target, scene.card_size_mm), scene, pose, out, frame_seed);
+}
+
+void renderPattern(const CameraModel& camera, const TargetGeometry& target, const PatternGeometry& pattern,
+                   const VirtualSceneOptions& scene, const Pose& pose, cv::Mat& out, std::uint64_t frame_seed) {
+  PlaneScene p = targetPlane(target, pattern.card_size_mm);
+  p.pattern = true;
+  p.spacing = std::max(pattern.spot_spacing_mm, 1e-9);
+  // Spots reaching half the spacing would merge; the nearest-node test assumes they do not.
+  const double spot_r = std::min(pattern.spot_radius_mm, 0.5 * p.spacing);
+  p.grid_spot_r2 = spot_r * spot_r;
+  p.columns = std::max(pattern.columns, 1);
+  p.rows = std::max(pattern.rows, 1);
+  p.col_centre = 0.5 * (p.columns - 1.0);
+  p.row_centre = 0.5 * (p.rows - 1.0);
+  p.sheet_hx = 0.5 * p.columns * p.spacing;
+  p.sheet_hy = 0.5 * p.rows * p.spacing;
+  render(camera, p, scene, pose, out, frame_seed);
+}
+
+}  // namespace imagepro
