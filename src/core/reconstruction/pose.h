@@ -1,0 +1,64 @@
+#pragma once
+// Analytic, non-iterative pose of the target from its undistorted image (thesis 1.4):
+// the ellipse of the disk's rim and the images of the two spots give Rx, Ry, Rz, Tx, Ty, Tz.
+//
+// The image conic C and the camera centre define an oblique cone Q = K^T C K (K the
+// pinhole matrix). Ordering its eigenvalues l1 >= l2 > 0 > l3 (eigenvectors e1, e2, e3),
+// Q - l2*I is a pair of planes, so every plane with normal
+//     n = (+-sqrt(l1 - l2) e1 + sqrt(l2 - l3) e3) / sqrt(l1 - l3)
+// cuts the cone in a circle; for radius R the plane lies at distance
+//     d = R l2 / sqrt(-l1 l3)
+// from the camera and the circle's centre is
+//     c = d / (l2 sqrt(l1 - l3)) * (+-sqrt(l1 - l2) l3 e1 + sqrt(l2 - l3) l1 e3).
+// Of the two candidates, the one whose centre projects onto the centre spot's image is
+// the target; the offset spot's ray, cut with that plane, gives the target's +X axis and
+// so Rz. The target's +Z is the plane normal pointing away from the camera.
+//
+// The centroid of a spot's image is not the image of the spot's centre (perspective moves
+// it by a fraction of a pixel); once the plane is known this offset is computed in closed
+// form from the spot's own image conic and removed before Rz is taken.
+#include <Eigen/Core>
+#include <array>
+
+#include "core/common/geometry.h"
+#include "core/common/status.h"
+#include "core/ellipse/ellipse.h"
+
+namespace imagepro {
+
+struct CircleCandidate {
+  Eigen::Vector3d normal;  // unit, camera frame, pointing away from the camera (n . centre > 0)
+  Eigen::Vector3d centre;  // mm, camera frame
+};
+
+// The two circles of the given radius whose image (ideal, undistorted pixels) is `conic`.
+// SingularConic when the cone is degenerate or has no real points, NotAnEllipse when the
+// image conic is not an ellipse.
+Status circleCandidates(const CameraModel& cam, const Conic& undistortedConic, double radius_mm,
+                        std::array<CircleCandidate, 2>& out);
+
+// The target's pose from its undistorted rim ellipse and the undistorted centroids of the
+// centre and offset spots' images.
+// Errors: SingularConic / NotAnEllipse (conic), CentreSpotOutsideEllipse, NormalFacingAway
+// (the target plane would be seen edge-on or from behind, or the offset spot's ray meets it
+// behind the camera), SpotsNotFound (the offset spot is not where the target's geometry
+// puts it relative to the centre).
+Status poseFromEllipse(const CameraModel& cam, const TargetGeometry& target,
+                       const Conic& undistortedConic, const Eigen::Vector2d& centreSpotPx,
+                       const Eigen::Vector2d& offsetSpotPx, Pose& out);
+
+// For comparison only: the plane normal from the polar line of the centre spot's image with
+// respect to the conic (the plane's vanishing line). Exact in theory, but it depends on one
+// point and on the conic's shape far more than the eigen-structure does (see docs/accuracy.md).
+// Unit, pointing away from the camera.
+Status normalFromPolarLine(const CameraModel& cam, const Conic& undistortedConic,
+                           const Eigen::Vector2d& centreSpotPx, Eigen::Vector3d& normal);
+
+// The image conic (ideal pixels) of a circle in the target plane: centre (x, y) and radius
+// in target coordinates (mm), seen at `pose`. Used for the spot correction and by tests.
+Eigen::Matrix3d imageConicOfTargetCircle(const CameraModel& cam, const Pose& pose, double x_mm,
+                                         double y_mm, double radius_mm);
+// Centre of a (central) conic given as a 3x3 symmetric matrix; false when it has none.
+bool conicMatrixCentre(const Eigen::Matrix3d& M, Eigen::Vector2d& centre);
+
+}  // namespace imagepro

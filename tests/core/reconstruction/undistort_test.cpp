@@ -1,0 +1,147 @@
+#include "core/reconstruction/undistort.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace imagepro {
+namespace {
+
+CameraModel thesisCamera() {
+  CameraModel cam;
+  cam.distortion = kThesisCameraDistortion;
+  return cam;
+}
+
+// Strong composite distortion in the spirit of the thesis's fig. 4.9: the thesis camera's
+// coefficients times 2.5, 64 px of displacement at the image corners.
+CameraModel exaggeratedCamera() {
+  CameraModel cam;
+  const Distortion& d = kThesisCameraDistortion;
+  cam.distortion = {2.5 * d.k1, 2.5 * d.k2, 2.5 * d.p1, 2.5 * d.p2};
+  return cam;
+}
+
+TEST(Undistort, JacobianMatchesFiniteDifferences) {
+  const Distortion d = exaggeratedCamera().distortion;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> pos(-330, 330);
+  for (int i = 0; i < 200; ++i) {
+    const Eigen::Vector2d q(pos(rng), pos(rng));
+    const DistortionJacobian fj = distortionWithJacobian(d, q);
+    EXPECT_LT((fj.f - distortionDelta(d, q)).norm(), 1e-12);
+    const double h = 1e-4;
+    for (int k = 0; k < 2; ++k) {
+      Eigen::Vector2d dq = Eigen::Vector2d::Zero();
+      dq[k] = h;
+      const Eigen::Vector2d column = (distortionDelta(d, q + dq) - distortionDelta(d, q - dq)) / (2 * h);
+      EXPECT_NEAR(fj.J(0, k), column.x(), 1e-8);
+      EXPECT_NEAR(fj.J(1, k), column.y(), 1e-8);
+    }
+  }
+}
+
+TEST(Undistort, NoDistortionIsIdentity) {
+  CameraModel cam;
+  const Eigen::Vector2d p(12.25, 470.5);
+  EXPECT_EQ(undistortTaylor(cam, p), p);
+  EXPECT_EQ(undistortExact(cam, p), p);
+  std::vector<Eigen::Vector2d> pts{p, {0, 0}};
+  undistortPoints(cam, false, pts);
+  EXPECT_EQ(pts[0], p);
+}
+
+TEST(Undistort, PrincipalPointIsFixed) {
+  const CameraModel cam = exaggeratedCamera();
+  const Eigen::Vector2d c(cam.u0(), cam.v0());
+  EXPECT_LT((undistortTaylor(cam, c) - c).norm(), 1e-12);
+  EXPECT_LT((undistortExact(cam, c) - c).norm(), 1e-12);
+}
+
+TEST(Undistort, ExactInverseRoundTripsOverTheImage) {
+  for (const CameraModel& cam : {thesisCamera(), exaggeratedCamera()}) {
+    for (int v = 0; v < cam.height; v += 7) {
+      for (int u = 0; u < cam.width; u += 7) {
+        const Eigen::Vector2d x(u, v);
+        EXPECT_LT((distortPixel(cam, undistortExact(cam, x)) - x).norm(), 1e-9);
+        const Eigen::Vector2d y(u, v);  // and the other way round
+        EXPECT_LT((undistortExact(cam, distortPixel(cam, y)) - y).norm(), 1e-9);
+      }
+    }
+  }
+}
+
+// Pure radial k1 on the u axis: u = w (1 + k1 w^2), a depressed cubic solved by Cardano.
+TEST(Undistort, ExactMatchesClosedFormPureRadial) {
+  CameraModel cam;
+  cam.distortion = {-8.0e-7, 0, 0, 0};
+  for (double w = -320; w <= 320; w += 10) {
+    const double u = w * (1 + cam.distortion.k1 * w * w);
+    // k1 w^3 + w - u = 0  ->  w^3 + p w + q = 0 with p = 1/k1, q = -u/k1 (p < 0: three real roots
+    // possible; the physical one is nearest u).
+    const double p = 1.0 / cam.distortion.k1, q = -u / cam.distortion.k1;
+    const double m = 2.0 * std::sqrt(-p / 3.0);
+    double best = 1e300;
+    for (int k = 0; k < 3; ++k) {
+      const double root = m * std::cos(std::acos(3.0 * q / (p * m)) / 3.0 - 2.0 * M_PI * k / 3.0);
+      if (std::abs(root - u) < std::abs(best - u)) best = root;
+    }
+    ASSERT_NEAR(best, w, 1e-7);
+    const Eigen::Vector2d px(cam.u0() + u, cam.v0());
+    EXPECT_NEAR(undistortExact(cam, px).x() - cam.u0(), best, 1e-9);
+    EXPECT_NEAR(undistortExact(cam, px).y(), cam.v0(), 1e-12);
+  }
+}
+
+// Pure tangential p2 on the u axis: u = w + 3 p2 w^2, v unchanged: a quadratic.
+TEST(Undistort, ExactAndTaylorAgainstClosedFormPureTangential) {
+  CameraModel cam;
+  cam.distortion = {0, 0, 0, 2.0e-5};
+  const double p2 = cam.distortion.p2;
+  for (double w = -320; w <= 320; w += 10) {
+    const double u = w + 3 * p2 * w * w;
+    const double closed = (-1.0 + std::sqrt(1.0 + 12.0 * p2 * u)) / (6.0 * p2);
+    const Eigen::Vector2d px(cam.u0() + u, cam.v0());
+    EXPECT_NEAR(undistortExact(cam, px).x() - cam.u0(), closed, 1e-9);
+    // On this axis the Taylor inverse is one Newton step from the distorted point, so its
+    // error is h''/(2h') e0^2 with e0 = 3 p2 w^2: about 27 p2^3 w^4.
+    const double taylorErr = std::abs(undistortTaylor(cam, px).x() - cam.u0() - closed);
+    EXPECT_LE(taylorErr, 2.0 * 27.0 * std::pow(p2, 3) * std::pow(w, 4) + 1e-12);
+  }
+}
+
+// The Taylor inverse is exact to second order in the distortion: halving the distortion
+// divides the error by at least 2^3.
+TEST(Undistort, TaylorErrorIsThirdOrderInTheDistortion) {
+  CameraModel big = exaggeratedCamera();
+  CameraModel half = big;
+  half.distortion = {big.distortion.k1 / 2, big.distortion.k2 / 2, big.distortion.p1 / 2,
+                     big.distortion.p2 / 2};
+  const Eigen::Vector2d corner(5, 5);
+  const double eBig = (undistortTaylor(big, corner) - undistortExact(big, corner)).norm();
+  const double eHalf = (undistortTaylor(half, corner) - undistortExact(half, corner)).norm();
+  EXPECT_GT(eBig, 0.0);
+  EXPECT_GT(eBig / eHalf, 7.0);
+}
+
+// Thesis 4.5: at most one pixel over the image for its camera, at most six for exaggerated
+// composite distortion.
+TEST(Undistort, TaylorErrorOverTheWholeImageMeetsTheThesisBounds) {
+  const UndistortionError thesis = measureTaylorUndistortionError(thesisCamera());
+  EXPECT_LT(thesis.max_residual_exact_px, 1e-9);
+  EXPECT_LE(thesis.max_px, 1.0);
+  EXPECT_GT(thesis.max_px, 0.0);
+  const UndistortionError big = measureTaylorUndistortionError(exaggeratedCamera());
+  EXPECT_LT(big.max_residual_exact_px, 1e-9);
+  EXPECT_LE(big.max_px, 6.0);
+  EXPECT_GT(big.max_px, thesis.max_px);
+  // Taylor is far better than no correction at all.
+  CameraModel cam = exaggeratedCamera();
+  const Eigen::Vector2d corner(0, 0);
+  EXPECT_LT((undistortTaylor(cam, corner) - undistortExact(cam, corner)).norm(),
+            0.25 * (corner - undistortExact(cam, corner)).norm());
+}
+
+}  // namespace
+}  // namespace imagepro
