@@ -1,0 +1,165 @@
+#include "core/source/sources.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "core/source/virtual_renderer.h"
+
+namespace imagepro {
+namespace {
+
+namespace fs = std::filesystem;
+
+void expectPose(const Pose& got, const Pose& want, double tol = 1e-12) {
+  EXPECT_NEAR(got.rx_deg, want.rx_deg, tol);
+  EXPECT_NEAR(got.ry_deg, want.ry_deg, tol);
+  EXPECT_NEAR(got.rz_deg, want.rz_deg, tol);
+  EXPECT_NEAR(got.tx_mm, want.tx_mm, tol);
+  EXPECT_NEAR(got.ty_mm, want.ty_mm, tol);
+  EXPECT_NEAR(got.tz_mm, want.tz_mm, tol);
+}
+
+TEST(FileSource, DeliversEveryFileAndGoesOnAfterErrors) {
+  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / "source" / "file_source";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const cv::Mat a(20, 30, CV_8UC1, cv::Scalar(40));
+  const cv::Mat b(10, 15, CV_8UC1, cv::Scalar(200));
+  cv::imwrite((dir / "a.png").string(), a);
+  cv::imwrite((dir / "b.pgm").string(), b);
+  std::ofstream((dir / "bad.png").string()) << "garbage";
+  auto source = makeFileSource({(dir / "a.png").string(), (dir / "gone.png").string(), (dir / "bad.png").string(),
+                                (dir / "b.pgm").string()});
+  EXPECT_EQ(source->frameRateHz(), 0.0);
+  Frame f;
+  ASSERT_EQ(source->next(f), Status::Ok);
+  EXPECT_EQ(f.index, 0);
+  EXPECT_EQ(f.name, "a.png");
+  EXPECT_EQ(cv::norm(f.image, a, cv::NORM_INF), 0.0);
+  EXPECT_FALSE(f.truth.has_value());
+
+  EXPECT_EQ(source->next(f), Status::FileNotFound);
+  EXPECT_EQ(f.index, 1);
+  EXPECT_EQ(f.name, "gone.png");
+  EXPECT_TRUE(f.image.empty());
+  EXPECT_NE(source->lastError().find("gone.png"), std::string::npos);
+
+  EXPECT_EQ(source->next(f), Status::FileUnreadable);
+  EXPECT_EQ(f.name, "bad.png");
+  EXPECT_NE(source->lastError().find("bad.png"), std::string::npos);
+
+  ASSERT_EQ(source->next(f), Status::Ok);
+  EXPECT_EQ(f.index, 3);
+  EXPECT_EQ(f.name, "b.pgm");
+  EXPECT_EQ(cv::norm(f.image, b, cv::NORM_INF), 0.0);
+
+  EXPECT_EQ(source->next(f), Status::EndOfStream);
+  EXPECT_EQ(source->next(f), Status::EndOfStream);
+  EXPECT_EQ(makeFileSource({})->next(f), Status::EndOfStream);
+}
+
+Settings virtualSettings() {
+  Settings s;
+  s.virtual_scene.mode = RenderMode::Binary;
+  s.virtual_scene.frame_rate_hz = 20;
+  s.virtual_scene.motion.kind = MotionKind::Sinusoid;
+  s.virtual_scene.motion.axis = PoseAxis::Tx;
+  s.virtual_scene.motion.amplitude = 80;
+  s.virtual_scene.motion.period_s = 2;
+  return s;
+}
+
+TEST(VirtualSource, FramesCarryIndexTimeAndExactPose) {
+  const Settings settings = virtualSettings();
+  auto source = makeVirtualSource(settings);
+  EXPECT_EQ(source->frameRateHz(), 20.0);
+  EXPECT_NE(source->describe().find("virtual"), std::string::npos);
+  Frame f;
+  for (int i = 0; i < 12; ++i) {
+    ASSERT_EQ(source->next(f), Status::Ok);
+    EXPECT_EQ(f.index, i);
+    EXPECT_DOUBLE_EQ(f.timestamp_s, i / 20.0);
+    ASSERT_TRUE(f.truth.has_value());
+    expectPose(*f.truth, virtualPoseAt(settings.virtual_scene, i / 20.0));
+    cv::Mat expected;
+    renderTarget(settings.camera, settings.target, settings.virtual_scene, *f.truth, expected, i);
+    EXPECT_EQ(cv::norm(f.image, expected, cv::NORM_INF), 0.0);
+  }
+  // Frame 10 is at t = 0.5 s, a quarter of the 2 s period: the sinusoid's crest.
+  EXPECT_NEAR(source->poseAt(10).tx_mm, settings.virtual_scene.initial_pose.tx_mm + 80.0, 1e-9);
+}
+
+TEST(VirtualSource, KeysSettingsAndRestartApplyFromTheNextFrame) {
+  Settings settings = virtualSettings();
+  settings.virtual_scene.motion.kind = MotionKind::Static;
+  auto source = makeVirtualSource(settings);
+  Frame f;
+  ASSERT_EQ(source->next(f), Status::Ok);
+  expectPose(*f.truth, settings.virtual_scene.initial_pose);
+  source->pressKey(VirtualKey::TxPlus);
+  source->pressKey(VirtualKey::TxPlus);
+  source->pressKey(VirtualKey::RzMinus);
+  ASSERT_EQ(source->next(f), Status::Ok);
+  Pose want = settings.virtual_scene.initial_pose;
+  want.tx_mm += 2 * settings.virtual_scene.key_step_mm;
+  want.rz_deg -= settings.virtual_scene.key_step_deg;
+  expectPose(*f.truth, want);
+  expectPose(source->keyOffset(), Pose{0, 0, -settings.virtual_scene.key_step_deg, 2 * settings.virtual_scene.key_step_mm, 0, 0});
+
+  settings.virtual_scene.initial_pose.tz_mm = 1200;
+  source->setSettings(settings);
+  ASSERT_EQ(source->next(f), Status::Ok);
+  EXPECT_EQ(f.index, 2);
+  EXPECT_NEAR(f.truth->tz_mm, 1200, 1e-12);
+  EXPECT_NEAR(f.truth->tx_mm, want.tx_mm, 1e-12);  // the key offset is kept
+
+  source->resetKeyOffset();
+  source->restart();
+  EXPECT_EQ(source->nextIndex(), 0);
+  ASSERT_EQ(source->next(f), Status::Ok);
+  EXPECT_EQ(f.index, 0);
+  expectPose(*f.truth, settings.virtual_scene.initial_pose);
+
+  source->setContent(VirtualContent::Pattern);
+  ASSERT_EQ(source->next(f), Status::Ok);
+  cv::Mat expected;
+  renderPattern(settings.camera, settings.target, settings.pattern, settings.virtual_scene, *f.truth, expected, 1);
+  EXPECT_EQ(cv::norm(f.image, expected, cv::NORM_INF), 0.0);
+  EXPECT_NE(source->describe().find("pattern"), std::string::npos);
+}
+
+TEST(VirtualSource, KeysFromAnotherThreadWhileRendering) {
+  Settings settings = virtualSettings();
+  settings.virtual_scene.motion.kind = MotionKind::Static;
+  settings.virtual_scene.mode = RenderMode::Grey;
+  auto source = makeVirtualSource(settings);
+  std::atomic<bool> done{false};
+  std::thread gui([&] {
+    for (int i = 0; i < 200; ++i) {
+      source->pressKey(i % 2 ? VirtualKey::TyPlus : VirtualKey::TxPlus);
+      if (i % 50 == 0) source->setSettings(settings);
+    }
+    done = true;
+  });
+  Frame f;
+  double last_sum = -1;
+  while (!done) {
+    ASSERT_EQ(source->next(f), Status::Ok);
+    const double sum = f.truth->tx_mm + f.truth->ty_mm;
+    EXPECT_GE(sum, last_sum);  // offsets only grow
+    last_sum = sum;
+  }
+  gui.join();
+  ASSERT_EQ(source->next(f), Status::Ok);
+  EXPECT_NEAR(f.truth->tx_mm, 100 * settings.virtual_scene.key_step_mm, 1e-9);
+  EXPECT_NEAR(f.truth->ty_mm, 100 * settings.virtual_scene.key_step_mm, 1e-9);
+}
+
+}  // namespace
+}  // namespace imagepro
