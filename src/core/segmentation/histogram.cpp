@@ -1,5 +1,7 @@
 #include "core/segmentation/histogram.h"
 
+#include <cstring>
+
 #include "core/segmentation/image_buffer.h"
 
 namespace imagepro {
@@ -11,27 +13,34 @@ namespace {
 struct PartialHistograms {
   std::uint32_t bins[4][256] = {};
 
-  // Counts the n pixels at p and, when `copy` is set, writes them to `copy` in the same pass.
+  // Counts the n pixels at p and, when kCopy is set, writes them to `copy` in the same
+  // pass. Pixels are read four at a time as one word: fewer loads for the same stores.
   template <bool kCopy>
   void addRow(const std::uint8_t* p, int n, std::uint8_t* copy = nullptr) {
     int i = 0;
-    for (; i + 4 <= n; i += 4) {
-      const std::uint8_t a = p[i], b = p[i + 1], c = p[i + 2], d = p[i + 3];
+    for (; i + 8 <= n; i += 8) {
+      std::uint32_t w0, w1;
+      std::memcpy(&w0, p + i, 4);
+      std::memcpy(&w1, p + i + 4, 4);
       if constexpr (kCopy) {
-        copy[i] = a;
-        copy[i + 1] = b;
-        copy[i + 2] = c;
-        copy[i + 3] = d;
+        std::memcpy(copy + i, &w0, 4);
+        std::memcpy(copy + i + 4, &w1, 4);
       }
-      ++bins[0][a];
-      ++bins[1][b];
-      ++bins[2][c];
-      ++bins[3][d];
+      add4(w0);
+      add4(w1);
     }
     for (; i < n; ++i) {
       if constexpr (kCopy) copy[i] = p[i];
       ++bins[0][p[i]];
     }
+  }
+
+  // The four bytes of w, each into its own partial histogram (byte order does not matter).
+  void add4(std::uint32_t w) {
+    ++bins[0][w & 0xFF];
+    ++bins[1][(w >> 8) & 0xFF];
+    ++bins[2][(w >> 16) & 0xFF];
+    ++bins[3][w >> 24];
   }
 
   void sumInto(Histogram& hist) const {

@@ -109,6 +109,9 @@ Status thresholdAtMod(const Histogram& h, int& t) {
   // Class 1 = [0, t] as P1, P1 mu1 and P1 (sigma1^2 + mu1^2); class 2 is the rest.
   std::int64_t count1 = 0, first1 = 0, second1 = 0;
   for (int candidate = 0; candidate <= 255; ++candidate) {
+    // An empty level leaves both classes as they were for t - 1: the same J, which
+    // never beats the smaller t (saves the logarithms on the empty ends of a histogram).
+    if (h[candidate] == 0) continue;
     // Eqs. 2.13-2.15: grey level t joins class 1 and leaves class 2.
     count1 += h[candidate];
     first1 += first_moment[candidate];

@@ -1,0 +1,162 @@
+// Segmentation (thesis 2.3, table 2.1): histogram, AT-Orig vs AT-Mod, binarization, and
+// OpenCV's Otsu threshold on the same frames, one core. Frames: the Virtual source's
+// grey target at several poses with clutter, noise, blur and uneven, dim lighting.
+//   build/tests/bench/bench_segmentation --benchmark_min_time=0.5
+#include <benchmark/benchmark.h>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "core/segmentation/histogram.h"
+#include "core/segmentation/threshold.h"
+#include "core/source/virtual_renderer.h"
+
+namespace imagepro {
+namespace {
+
+struct TestFrames {
+  std::vector<cv::Mat> grey;
+  std::vector<Histogram> hist;
+};
+
+const TestFrames& frames() {
+  static const TestFrames f = [] {
+    cv::setNumThreads(1);  // one core for OpenCV too
+    const CameraModel camera;  // 640 x 480
+    const TargetGeometry target;
+    const Pose poses[] = {{0, 0, 0, 0, 0, 800},        {20, -15, 30, 120, -60, 900},
+                          {-35, 10, -80, -150, 80, 1200}, {10, 40, 150, 60, 100, 650},
+                          {0, -50, 10, -200, -120, 1500}, {45, 0, 0, 0, 0, 1000},
+                          {-15, -25, -170, 180, 30, 700},  {5, 5, 60, -40, -150, 1800}};
+    TestFrames out;
+    for (int i = 0; i < 8; ++i) {
+      VirtualSceneOptions scene;
+      scene.mode = RenderMode::Grey;
+      scene.clutter = 4 + i;
+      scene.seed = 100 + i;
+      scene.noise_sigma = 2.0 + i % 3 * 2.0;
+      scene.blur_sigma_px = 0.5 + 0.2 * (i % 4);
+      scene.illumination_gradient = 0.1 * (i % 5);
+      scene.white_level = 150 + 12 * i;  // dim to bright lighting
+      scene.black_level = 12 + 2 * i;
+      scene.background_level = 60 + 10 * i;
+      cv::Mat grey;
+      renderTarget(camera, target, scene, poses[i], grey, i);
+      Histogram h;
+      computeHistogram(grey, h);
+      out.grey.push_back(grey);
+      out.hist.push_back(h);
+    }
+    return out;
+  }();
+  return f;
+}
+
+constexpr int kFrames = 8;
+
+void Histogram640x480(benchmark::State& state) {
+  const auto& f = frames();
+  Histogram h;
+  int i = 0;
+  for (auto _ : state) {
+    computeHistogram(f.grey[i++ % kFrames], h);
+    benchmark::DoNotOptimize(h.data());
+  }
+}
+BENCHMARK(Histogram640x480);
+
+// The crop pass of a tracked frame: a 200 x 200 region copied and counted together.
+void CropWithHistogram200x200(benchmark::State& state) {
+  const auto& f = frames();
+  cv::Mat crop;
+  Histogram h;
+  int i = 0;
+  for (auto _ : state) {
+    cropWithHistogram(f.grey[i++ % kFrames], cv::Rect(220, 140, 200, 200), crop, h);
+    benchmark::DoNotOptimize(h.data());
+  }
+}
+BENCHMARK(CropWithHistogram200x200);
+
+// Table 2.1: threshold and time per image, from the histogram.
+template <Status (*kThreshold)(const Histogram&, int&)>
+void ThresholdFromHistogram(benchmark::State& state) {
+  const Histogram& h = frames().hist[state.range(0)];
+  int t = -1;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(kThreshold(h, t));
+    benchmark::DoNotOptimize(t);
+  }
+  state.counters["threshold"] = t;
+}
+BENCHMARK(ThresholdFromHistogram<thresholdAtOrig>)->Name("AtOrig")->DenseRange(0, kFrames - 1);
+BENCHMARK(ThresholdFromHistogram<thresholdAtMod>)->Name("AtMod")->DenseRange(0, kFrames - 1);
+
+// The goal: histogram + AT-Mod per 640 x 480 frame.
+void HistogramAtMod(benchmark::State& state) {
+  const auto& f = frames();
+  Histogram h;
+  int t = -1, i = 0;
+  for (auto _ : state) {
+    computeHistogram(f.grey[i++ % kFrames], h);
+    benchmark::DoNotOptimize(thresholdAtMod(h, t));
+  }
+}
+BENCHMARK(HistogramAtMod);
+
+void Binarize640x480(benchmark::State& state) {
+  const auto& f = frames();
+  cv::Mat binary;
+  int i = 0;
+  for (auto _ : state) {
+    binarize(f.grey[i++ % kFrames], 100, binary);
+    benchmark::DoNotOptimize(binary.data);
+  }
+}
+BENCHMARK(Binarize640x480);
+
+// Side by side with OpenCV's Otsu, which also histograms and binarizes.
+void HistogramAtModBinarize(benchmark::State& state) {
+  const auto& f = frames();
+  Histogram h;
+  cv::Mat binary;
+  int t = -1, i = 0;
+  for (auto _ : state) {
+    const cv::Mat& grey = f.grey[i++ % kFrames];
+    computeHistogram(grey, h);
+    benchmark::DoNotOptimize(thresholdAtMod(h, t));
+    binarize(grey, t, binary);
+    benchmark::DoNotOptimize(binary.data);
+  }
+}
+BENCHMARK(HistogramAtModBinarize);
+
+void OpenCvOtsuBinarize(benchmark::State& state) {
+  const auto& f = frames();
+  cv::Mat binary;
+  int i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(cv::threshold(f.grey[i++ % kFrames], binary, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU));
+    benchmark::DoNotOptimize(binary.data);
+  }
+}
+BENCHMARK(OpenCvOtsuBinarize);
+
+// Otsu's threshold per image, beside table 2.1's rows.
+void OpenCvOtsu(benchmark::State& state) {
+  const cv::Mat& grey = frames().grey[state.range(0)];
+  cv::Mat binary;
+  double t = -1;
+  for (auto _ : state) {
+    t = cv::threshold(grey, binary, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
+    benchmark::DoNotOptimize(binary.data);
+  }
+  state.counters["threshold"] = t;
+}
+BENCHMARK(OpenCvOtsu)->DenseRange(0, kFrames - 1);
+
+}  // namespace
+}  // namespace imagepro
+
+BENCHMARK_MAIN();
