@@ -1,24 +1,16 @@
 // imagepro-cli threshold: the threshold of each image (thesis 2.3) by the chosen
 // method, one row per image; unreadable images get their error and the rest go on.
 #include <cstdio>
-#include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 
 #include "cli/command.h"
 #include "core/common/pose_csv.h"
 #include "core/segmentation/histogram.h"
 #include "core/segmentation/threshold.h"
 #include "core/settings/enum_names.h"
+#include "core/source/image_file.h"
 
 namespace imagepro::cli {
 namespace {
-
-Status readGrey(const std::string& path, cv::Mat& grey) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return Status::FileNotFound;
-  grey = cv::imread(path, cv::IMREAD_GRAYSCALE);
-  return grey.empty() ? Status::FileUnreadable : Status::Ok;
-}
 
 ThresholdOptions chosenOptions(const Args& args, const Settings& settings) {
   ThresholdOptions o = settings.pipeline.threshold;
@@ -53,10 +45,12 @@ int run(const Args& args) {
   Histogram hist;
   for (const auto& path : args.positionals()) {
     int t = 0;
-    Status status = readGrey(path, grey);
+    std::string problem;
+    Status status = readGreyImage(path, grey, problem);
     if (ok(status)) {
       computeHistogram(grey, hist);
       status = computeThreshold(options, hist, t);
+      problem = statusMessage(status);
     }
     const std::string value = ok(status) ? std::to_string(t) : std::string();
     if (csv) {
@@ -64,8 +58,7 @@ int run(const Args& args) {
     } else if (ok(status)) {
       std::printf("%s: %d\n", path.c_str(), t);
     } else {
-      std::printf("%s: %s (%s)\n", path.c_str(), std::string(statusName(status)).c_str(),
-                  std::string(statusMessage(status)).c_str());
+      std::printf("%s: %s (%s)\n", path.c_str(), std::string(statusName(status)).c_str(), problem.c_str());
     }
   }
   return 0;
