@@ -17,6 +17,7 @@
 //   - two or three populated grey levels (J is defined for no t, e.g. a binary frame):
 //     t splits at the widest gap between neighbouring populated levels (smallest t on a
 //     tie), so a 0/255 frame gives t = 0.
+// On an error `t` is left as it was.
 #include <opencv2/core.hpp>
 
 #include "core/common/status.h"
