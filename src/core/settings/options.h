@@ -113,6 +113,14 @@ struct DisplayOptions {
   bool feature_spots = true;
 };
 
+// Internal Camera Calibration panel (thesis 4.6): the lens distortion iteration.
+struct CalibrationOptions {
+  double relative_change = 0.01;  // converged when every parameter changes relatively less (thesis: 0.01)
+  int max_iterations = 10;        // not converged by then: Diverged
+  int min_matches = 20;           // fewer matched spots in an image: TooFewMatches, the image is skipped
+  double max_ambiguous_fraction = 0.05;  // more ambiguous spots than this in an image: MatchAmbiguity
+};
+
 struct PipelineOptions {
   ThresholdOptions threshold;
   EdgeMethod edge_method = EdgeMethod::Laplace;
@@ -123,6 +131,7 @@ struct PipelineOptions {
   TrackingOptions tracking;
   ApplicationLevel level = ApplicationLevel::Reconstruction;
   DisplayOptions display;
+  CalibrationOptions calibration;
 };
 
 }  // namespace imagepro

@@ -135,6 +135,12 @@ void visitSettings(Visitor& v, Settings& s) {
       v.field("feature_edge", p.display.feature_edge);
       v.field("feature_spots", p.display.feature_spots);
     });
+    v.object("calibration", [&] {
+      v.field("relative_change", p.calibration.relative_change, 1e-12, 1.0);
+      v.field("max_iterations", p.calibration.max_iterations, 1, 1000);
+      v.field("min_matches", p.calibration.min_matches, 4, 1000000);
+      v.field("max_ambiguous_fraction", p.calibration.max_ambiguous_fraction, 0.0, 1.0);
+    });
   });
 }
 
