@@ -4,6 +4,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -36,21 +37,32 @@ struct PlaneScene {
   double halfX() const { return pattern ? std::max(sheet_hx, card_half) : card_half; }
   double halfY() const { return pattern ? std::max(sheet_hy, card_half) : card_half; }
 
-  int levelAt(double x, double y) const {
+  // Level at the plane point (a / w, b / w), w > 0: homogeneous, so the target and
+  // its card need no division.
+  int levelAt(double a, double b, double w) const {
+    const double cw = card_half * w;
+    if (std::abs(a) <= cw && std::abs(b) <= cw) {
+      if (!facing) return black;
+      const double w2 = w * w;
+      const double r2 = a * a + b * b;
+      if (r2 > disk_r2 * w2 || r2 < spot_r2 * w2) return black;
+      const double da = a - spot_offset * w;
+      return da * da + b * b < spot_r2 * w2 ? black : white;
+    }
+    if (!pattern) return kOutside;
+    return sheetLevel(a / w, b / w);
+  }
+
+  // Level at a plane point (x, y) beyond the card.
+  int sheetLevel(double x, double y) const {
     const double ax = std::abs(x);
     const double ay = std::abs(y);
-    if (ax <= card_half && ay <= card_half) {
-      if (!facing) return black;
-      const double r2 = x * x + y * y;
-      if (r2 > disk_r2 || r2 < spot_r2) return black;
-      const double dx = x - spot_offset;
-      return dx * dx + y * y < spot_r2 ? black : white;
-    }
-    if (!pattern || ax > sheet_hx || ay > sheet_hy) return kOutside;
+    if (ax > sheet_hx || ay > sheet_hy) return kOutside;
     if (!facing) return black;
     // Spots are smaller than half the spacing, so only the nearest grid node can hold x, y.
-    const double i = std::clamp(std::round(x / spacing + col_centre), 0.0, columns - 1.0);
-    const double j = std::clamp(std::round(y / spacing + row_centre), 0.0, rows - 1.0);
+    // Clamped first, so truncating x + 0.5 rounds (and stays clear of libm calls).
+    const double i = static_cast<int>(std::clamp(x / spacing + col_centre, 0.0, columns - 1.0) + 0.5);
+    const double j = static_cast<int>(std::clamp(y / spacing + row_centre, 0.0, rows - 1.0) + 0.5);
     const double cx = (i - col_centre) * spacing;
     const double cy = (j - row_centre) * spacing;
     const double dx = x - cx;
@@ -111,25 +123,44 @@ void makeClutter(int count, unsigned seed, int width, int height, std::vector<Cl
   }
 }
 
+// The distortion map q -> q + delta(q) of eq. 4.7 at q (relative to the principal
+// point): its value and its Jacobian [j00 j01; j01 j11] (symmetric).
+struct DistortionMap {
+  double du, dv, j00, j01, j11;
+};
+
+inline DistortionMap distortionMap(const Distortion& d, double u, double v) {
+  const double r2 = u * u + v * v;
+  const double radial = d.k1 * r2 + d.k2 * r2 * r2;
+  const double dradial = d.k1 + 2.0 * d.k2 * r2;  // d(radial)/d(r2)
+  DistortionMap m;
+  m.du = u + u * radial + 2.0 * d.p1 * u * v + d.p2 * (r2 + 2.0 * u * u);
+  m.dv = v + v * radial + d.p1 * (r2 + 2.0 * v * v) + 2.0 * d.p2 * u * v;
+  m.j00 = 1.0 + radial + 2.0 * u * u * dradial + 2.0 * d.p1 * v + 6.0 * d.p2 * u;
+  m.j01 = 2.0 * u * v * dradial + 2.0 * d.p1 * u + 2.0 * d.p2 * v;
+  m.j11 = 1.0 + radial + 2.0 * v * v * dradial + 6.0 * d.p1 * v + 2.0 * d.p2 * u;
+  return m;
+}
+
 // Undistorted position q (relative to the principal point) with q + delta(q) = p:
 // Newton's method on eq. 4.7, starting from `q`. False when it does not converge to a
 // solution on the unfolded branch (positive Jacobian): with strong distortion, image
 // points beyond the fold of the model have no undistorted position.
 bool undistortRelative(const Distortion& d, const Eigen::Vector2d& p, Eigen::Vector2d& q) {
   for (int it = 0; it < 30; ++it) {
-    const double u = q.x();
-    const double v = q.y();
-    const double r2 = u * u + v * v;
-    const double radial = d.k1 * r2 + d.k2 * r2 * r2;
-    const double dradial = d.k1 + 2.0 * d.k2 * r2;  // d(radial)/d(r2)
-    const Eigen::Vector2d f = q + distortionDelta(d, q) - p;
-    const double j00 = 1.0 + radial + 2.0 * u * u * dradial + 2.0 * d.p1 * v + 6.0 * d.p2 * u;
-    const double j01 = 2.0 * u * v * dradial + 2.0 * d.p1 * u + 2.0 * d.p2 * v;  // = j10
-    const double j11 = 1.0 + radial + 2.0 * v * v * dradial + 6.0 * d.p1 * v + 2.0 * d.p2 * u;
-    const double det = j00 * j11 - j01 * j01;
-    if (!(det > 1e-9) || !(j00 > 0.0)) return false;
-    if (f.squaredNorm() < 1e-20) return true;  // 1e-10 px
-    q -= Eigen::Vector2d((j11 * f.x() - j01 * f.y()) / det, (j00 * f.y() - j01 * f.x()) / det);
+    const DistortionMap m = distortionMap(d, q.x(), q.y());
+    const double fx = m.du - p.x();
+    const double fy = m.dv - p.y();
+    const double det = m.j00 * m.j11 - m.j01 * m.j01;
+    if (!(det > 1e-9) || !(m.j00 > 0.0)) return false;
+    if (fx * fx + fy * fy < 1e-20) return true;  // 1e-10 px
+    const double step_u = (m.j11 * fx - m.j01 * fy) / det;
+    const double step_v = (m.j00 * fy - m.j01 * fx) / det;
+    q.x() -= step_u;
+    q.y() -= step_v;
+    // Newton converges quadratically: after a step below 1e-4 px the error is of the
+    // order of the distortion's curvature (<< 1 / px) times 1e-8 px^2.
+    if (step_u * step_u + step_v * step_v < 1e-8) return true;
   }
   return false;
 }
@@ -260,6 +291,15 @@ Workspace& workspace() {
   return ws;
 }
 
+// The clutter shapes that may cover some area of the image: a short list, or all of
+// them when too many overlap there.
+struct ClutterCandidates {
+  static constexpr int kMax = 32;
+  std::array<const ClutterShape*, kMax> shapes{};
+  int count = 0;
+  bool all = false;
+};
+
 // One frame's rendering state: the camera, the plane's mapping and the scene.
 class FrameRenderer {
  public:
@@ -279,61 +319,50 @@ class FrameRenderer {
       M << R_.col(0), R_.col(1), T_;
       G_ = M.inverse();
     }
+    distorted_ = !cache_.rays.empty();
     roi_ = computeRoi();
   }
 
   // Pixels outside this rectangle see no part of the plane scene.
   const cv::Rect& roi() const { return roi_; }
 
-  // Level at a sample point (u, v) of the image whose camera ray is (xn, yn, 1).
-  int levelOfRay(double xn, double yn, double u, double v) const {
+  // Level at a sample point (u, v) of the image whose camera ray is (xn, yn, 1);
+  // `clutter` holds the shapes that may contain it.
+  int levelOfRay(double xn, double yn, double u, double v, const ClutterCandidates& clutter) const {
     if (visible_) {
       const double w = G_(2, 0) * xn + G_(2, 1) * yn + G_(2, 2);
       if (w > 0.0) {
         const double a = G_(0, 0) * xn + G_(0, 1) * yn + G_(0, 2);
         const double b = G_(1, 0) * xn + G_(1, 1) * yn + G_(1, 2);
-        const int level = plane_.levelAt(a / w, b / w);
+        const int level = plane_.levelAt(a, b, w);
         if (level != kOutside) return level;
       }
     }
-    return clutterLevel(u, v);
+    return clutterOrBackground(u, v, clutter);
   }
 
-  // Level behind the plane scene: clutter or background.
-  int clutterLevel(double u, double v) const {
-    for (const auto& s : clutter_)
-      if (s.contains(u, v)) return clutter_level_;
+  // Level behind the plane scene at (u, v): clutter or background.
+  int clutterOrBackground(double u, double v, const ClutterCandidates& clutter) const {
+    if (clutter.all) {
+      for (const auto& s : clutter_)
+        if (s.contains(u, v)) return clutter_level_;
+    } else {
+      for (int k = 0; k < clutter.count; ++k)
+        if (clutter.shapes[k]->contains(u, v)) return clutter_level_;
+    }
     return background_;
   }
 
   // Ray through the pixel centre (u, v).
   void pixelRay(int u, int v, double& xn, double& yn) const {
-    if (cache_.rays.empty()) {
+    if (!distorted_) {
       xn = (u - cache_.u0) / cache_.fu;
       yn = (v - cache_.v0) / cache_.fv;
     } else {
-      const cv::Vec2d r = cache_.rays.at<cv::Vec2d>(v, u);
+      const cv::Vec2d& r = cache_.rays.ptr<cv::Vec2d>(v)[u];
       xn = r[0];
       yn = r[1];
     }
-  }
-
-  // Ray through any image point; `near_xn`, `near_yn` is the ray of a nearby pixel centre.
-  void sampleRay(double u, double v, double near_xn, double near_yn, double& xn, double& yn) const {
-    if (cache_.rays.empty()) {
-      xn = (u - cache_.u0) / cache_.fu;
-      yn = (v - cache_.v0) / cache_.fv;
-      return;
-    }
-    const Eigen::Vector2d p(u - cache_.u0, v - cache_.v0);
-    const Eigen::Vector2d start(near_xn * cache_.fu + (u - std::round(u)), near_yn * cache_.fv + (v - std::round(v)));
-    Eigen::Vector2d q;
-    if (!undistortFrom(cache_.distortion, p, start.allFinite() ? start : p, q)) {
-      xn = yn = NAN;
-      return;
-    }
-    xn = q.x() / cache_.fu;
-    yn = q.y() / cache_.fv;
   }
 
   // Fills `out` (CV_8UC1) with pixel-centre levels.
@@ -348,28 +377,84 @@ class FrameRenderer {
           if (s.contains(u, v)) row[u] = static_cast<std::uint8_t>(clutter_level_);
       }
     }
+    if (roi_.empty()) return;
+    const ClutterCandidates near = candidates(roi_);
+    // Local copies: byte stores into `out` may alias anything, so members would be
+    // reloaded for every pixel.
+    const PlaneScene plane = plane_;
+    const bool visible = visible_;
+    const double g00 = G_(0, 0), g01 = G_(0, 1), g02 = G_(0, 2);
+    const double g10 = G_(1, 0), g11 = G_(1, 1), g12 = G_(1, 2);
+    const double g20 = G_(2, 0), g21 = G_(2, 1), g22 = G_(2, 2);
+    const double inv_fu = 1.0 / cache_.fu;
+    const double inv_fv = 1.0 / cache_.fv;
+    const double u0 = cache_.u0;
+    const double v0 = cache_.v0;
+    auto level = [&](double xn, double yn, int u, int v) {
+      if (visible) {
+        const double w = g20 * xn + g21 * yn + g22;
+        if (w > 0.0) {
+          const int l = plane.levelAt(g00 * xn + g01 * yn + g02, g10 * xn + g11 * yn + g12, w);
+          if (l != kOutside) return l;
+        }
+      }
+      return clutterOrBackground(u, v, near);
+    };
     for (int v = roi_.y; v < roi_.y + roi_.height; ++v) {
       auto* row = out.ptr<std::uint8_t>(v);
-      for (int u = roi_.x; u < roi_.x + roi_.width; ++u) {
-        double xn, yn;
-        pixelRay(u, v, xn, yn);
-        row[u] = static_cast<std::uint8_t>(levelOfRay(xn, yn, u, v));
+      if (distorted_) {
+        const auto* rays = cache_.rays.ptr<cv::Vec2d>(v);
+        for (int u = roi_.x; u < roi_.x + roi_.width; ++u)
+          row[u] = static_cast<std::uint8_t>(level(rays[u][0], rays[u][1], u, v));
+      } else {
+        const double yn = (v - v0) * inv_fv;
+        for (int u = roi_.x; u < roi_.x + roi_.width; ++u)
+          row[u] = static_cast<std::uint8_t>(level((u - u0) * inv_fu, yn, u, v));
       }
     }
   }
 
   // Mean level over the pixel's area, n x n samples.
   float pixelAverage(int u, int v, int n) const {
+    const ClutterCandidates near = candidates(cv::Rect(u, v, 1, 1));
     double cxn, cyn;
     pixelRay(u, v, cxn, cyn);
+    // The undistortion is linearised about the pixel centre for a start close enough
+    // that Newton's method converges in about one step.
+    double i00 = 1, i01 = 0, i11 = 1, qu = 0, qv = 0;
+    if (distorted_ && !std::isfinite(cxn)) {
+      // The centre lies beyond the fold of the model: start each sample from itself.
+      qu = u - cache_.u0;
+      qv = v - cache_.v0;
+    } else if (distorted_) {
+      qu = cxn * cache_.fu;
+      qv = cyn * cache_.fv;
+      const DistortionMap m = distortionMap(cache_.distortion, qu, qv);
+      const double det = m.j00 * m.j11 - m.j01 * m.j01;
+      i00 = m.j11 / det;
+      i01 = -m.j01 / det;
+      i11 = m.j00 / det;
+    }
     int sum = 0;
     for (int j = 0; j < n; ++j) {
-      const double sv = v + (j + 0.5) / n - 0.5;
+      const double dv = (j + 0.5) / n - 0.5;
       for (int i = 0; i < n; ++i) {
-        const double su = u + (i + 0.5) / n - 0.5;
+        const double du = (i + 0.5) / n - 0.5;
         double xn, yn;
-        sampleRay(su, sv, cxn, cyn, xn, yn);
-        sum += levelOfRay(xn, yn, su, sv);
+        if (!distorted_) {
+          xn = cxn + du / cache_.fu;
+          yn = cyn + dv / cache_.fv;
+        } else {
+          const Eigen::Vector2d p(u + du - cache_.u0, v + dv - cache_.v0);
+          Eigen::Vector2d q(qu + i00 * du + i01 * dv, qv + i01 * du + i11 * dv);
+          if (!undistortRelative(cache_.distortion, p, q)) {
+            sum += clutterOrBackground(u + du, v + dv, near);
+            continue;
+          }
+          xn = q.x() / cache_.fu;
+          yn = q.y() / cache_.fv;
+        }
+        sum += levelOfRay(xn, yn, u + du, v + dv, near);
       }
     }
     return static_cast<float>(sum) / static_cast<float>(n * n);
@@ -445,7 +530,23 @@ class FrameRenderer {
   Eigen::Vector3d T_;
   Eigen::Matrix3d G_ = Eigen::Matrix3d::Zero();
   bool visible_ = false;
+  bool distorted_ = false;
   cv::Rect roi_;
+
+  // The shapes whose (padded) box meets `area`.
+  ClutterCandidates candidates(const cv::Rect& area) const {
+    ClutterCandidates c;
+    for (const auto& s : clutter_) {
+      if (s.u_max < area.x || s.u_min >= area.x + area.width || s.v_max < area.y || s.v_min >= area.y + area.height)
+        continue;
+      if (c.count == ClutterCandidates::kMax) {
+        c.all = true;
+        break;
+      }
+      c.shapes[c.count++] = &s;
+    }
+    return c;
+  }
 };
 
 int clampLevel(int level) { return std::clamp(level, 0, 255); }
