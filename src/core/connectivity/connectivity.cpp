@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdlib>
 #include <utility>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace imagepro {
 
@@ -24,6 +29,28 @@ inline std::size_t indexOffset(const EdgePixel& p, std::size_t stride) {
   return static_cast<std::size_t>(p.y + 1) * stride + static_cast<std::size_t>(p.x + 1);
 }
 
+// Bit j set when neighbour j (raster order, `offsets`) holds an edge pixel not yet in
+// a path: an entry >= 0, i.e. with its sign bit clear. The SSE2 form reads each of the
+// three rows as four entries (x - 1 .. x + 2), which the index image's spare column
+// keeps inside the buffer.
+inline std::uint32_t freshNeighbours(const std::int32_t* centre, const std::array<std::ptrdiff_t, 8>& offsets) {
+#if defined(__SSE2__)
+  auto signs = [](const std::int32_t* p) {
+    return static_cast<std::uint32_t>(_mm_movemask_ps(_mm_castsi128_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)))));
+  };
+  const std::uint32_t above = signs(centre + offsets[0]);
+  const std::uint32_t level = signs(centre - 1);
+  const std::uint32_t below = signs(centre + offsets[5]);
+  const std::uint32_t taken = (above & 7U) | ((level & 1U) << 3) | ((level & 4U) << 2) | ((below & 7U) << 5);
+  return ~taken & 0xFFU;
+#else
+  std::uint32_t fresh = 0;
+  for (std::size_t j = 0; j < offsets.size(); ++j)
+    fresh |= ((static_cast<std::uint32_t>(centre[offsets[j]]) >> 31) ^ 1U) << j;
+  return fresh;
+#endif
+}
+
 void startPaths(const EdgeList& edges, Paths& out) {
   out.clear();
   out.pixels.reserve(edges.size());
@@ -34,7 +61,7 @@ void startPaths(const EdgeList& edges, Paths& out) {
 // "all -1 between calls" invariant.
 Status indexEdges(const EdgeList& edges, cv::Size imageSize, ConnectivityWorkspace& ws) {
   const int rows = imageSize.height + 2;
-  const int cols = imageSize.width + 2;
+  const int cols = imageSize.width + 3;  // a one-pixel frame, plus a spare column for freshNeighbours
   if (ws.index.rows != rows || ws.index.cols != cols || ws.index.type() != CV_32SC1 || !ws.index.isContinuous()) {
     ws.index.create(rows, cols, CV_32SC1);
     ws.index.setTo(kNoPixel);
@@ -120,22 +147,30 @@ Status connectCN1(const EdgeList& edges, cv::Size imageSize, Paths& out, Connect
   // makes them readable at the image border.
   const std::array<std::ptrdiff_t, 8> neighbourOffsets = {-s - 1, -s, -s + 1, -1, 1, s - 1, s, s + 1};
 
-  for (const EdgePixel& seed : edges) {
-    std::int32_t* seedEntry = index + indexOffset(seed, stride);
+  // The reordered list is written in place, no allocation once it has grown.
+  const std::size_t n = edges.size();
+  out.pixels.resize(n);
+  EdgePixel* list = out.pixels.data();
+  const EdgePixel* input = edges.data();
+  std::size_t tail = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::int32_t* seedEntry = index + indexOffset(input[i], stride);
     if (*seedEntry == kAssigned) continue;
     *seedEntry = kAssigned;
-    out.pixels.push_back(seed);
-    // out.pixels is the reordered list: the path grows at its end while `head` walks it.
-    for (std::size_t head = out.starts.back(); head < out.pixels.size(); ++head) {
-      std::int32_t* centre = index + indexOffset(out.pixels[head], stride);
-      for (const std::ptrdiff_t d : neighbourOffsets) {
-        const std::int32_t k = centre[d];
-        if (k < 0) continue;  // no edge pixel there, or already in a path
-        centre[d] = kAssigned;
-        out.pixels.push_back(edges[static_cast<std::size_t>(k)]);
+    list[tail++] = input[i];
+    // The path grows at the list's end while `head` walks it.
+    for (std::size_t head = out.starts.back(); head < tail; ++head) {
+      std::int32_t* centre = index + indexOffset(list[head], stride);
+      // On a contour this is usually one neighbour, so the loop below rarely repeats.
+      std::uint32_t fresh = freshNeighbours(centre, neighbourOffsets);
+      while (fresh != 0) {
+        std::int32_t* entry = centre + neighbourOffsets[static_cast<std::size_t>(std::countr_zero(fresh))];
+        fresh &= fresh - 1;
+        list[tail++] = input[*entry];
+        *entry = kAssigned;
       }
     }
-    out.starts.push_back(static_cast<std::uint32_t>(out.pixels.size()));
+    out.starts.push_back(static_cast<std::uint32_t>(tail));
   }
   clearIndex(edges, ws);
   return Status::Ok;

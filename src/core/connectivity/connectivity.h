@@ -28,8 +28,8 @@ namespace imagepro {
 
 // Buffers reused from frame to frame.
 struct ConnectivityWorkspace {
-  // (height + 2) x (width + 2), CV_32SC1: the list index of the edge pixel at
-  // (x, y) is at (y + 1, x + 1), -1 elsewhere. Every entry is -1 between calls, so a
+  // (height + 2) x (width + 3), CV_32SC1: the list index of the edge pixel at
+  // (x, y) is at (y + 1, x + 1), -1 elsewhere (a frame, and a spare last column). Every entry is -1 between calls, so a
   // frame only touches the entries of its own edge pixels.
   cv::Mat index;
   std::vector<std::uint32_t> unassigned;  // CN0: input indices not yet in a path, in input order

@@ -22,10 +22,12 @@ inline int bit(std::uint8_t v) { return v != 0 ? 1 : 0; }
 
 // Sobel responses (eqs. 2.19-2.20) of the 0/1 image at column x, given the pixel's
 // row and the rows above and below (already replicated at the image border).
+// kInterior: the caller guarantees 0 < x < width - 1, so no column is replicated.
+template <bool kInterior = false>
 inline EdgePixel sobelPixel(const std::uint8_t* up, const std::uint8_t* cur, const std::uint8_t* down, int x,
                             int y, int width) {
-  const int l = x > 0 ? x - 1 : 0;
-  const int r = x < width - 1 ? x + 1 : x;
+  const int l = kInterior || x > 0 ? x - 1 : 0;
+  const int r = kInterior || x < width - 1 ? x + 1 : x;
   const int gx = (bit(up[r]) + 2 * bit(cur[r]) + bit(down[r])) - (bit(up[l]) + 2 * bit(cur[l]) + bit(down[l]));
   const int gy = (bit(down[l]) + 2 * bit(down[x]) + bit(down[r])) - (bit(up[l]) + 2 * bit(up[x]) + bit(up[r]));
   return {static_cast<std::int16_t>(x), static_cast<std::int16_t>(y), static_cast<std::int16_t>(gx),
@@ -36,6 +38,7 @@ inline EdgePixel sobelPixel(const std::uint8_t* up, const std::uint8_t* cur, con
 // elsewhere; it is exact (no carry crosses a byte), unlike the usual "has zero" test.
 constexpr std::uint64_t kLow7 = 0x7F7F7F7F7F7F7F7FULL;
 constexpr std::uint64_t kHigh = 0x8080808080808080ULL;
+constexpr std::uint64_t kAllWhite = ~std::uint64_t{0};
 inline std::uint64_t zeroBytes(std::uint64_t v) { return ~(((v & kLow7) + kLow7) | v) & kHigh; }
 inline std::uint64_t load8(const std::uint8_t* p) {
   std::uint64_t v;
@@ -63,12 +66,16 @@ void laplaceRow(const std::uint8_t* up, const std::uint8_t* cur, const std::uint
       for (x = 1; x + 9 <= width; x += 8) {
         const std::uint64_t c = load8(cur + x);
         if (c == 0) continue;  // eight black pixels: the common case in a dark scene
+        // Eight 255s with 255 above, below and at both ends: inside a white region.
+        if (c == kAllWhite && load8(up + x) == kAllWhite && load8(down + x) == kAllWhite && cur[x - 1] != 0 &&
+            cur[x + 8] != 0)
+          continue;
         std::uint64_t edge = ~zeroBytes(c) & kHigh &
                              (zeroBytes(load8(up + x)) | zeroBytes(load8(down + x)) | zeroBytes(load8(cur + x - 1)) |
                               zeroBytes(load8(cur + x + 1)));
         while (edge != 0) {
           const int k = std::countr_zero(edge) >> 3;
-          out.push_back(sobelPixel(up, cur, down, x + k, y, width));
+          out.push_back(sobelPixel<true>(up, cur, down, x + k, y, width));
           edge &= edge - 1;
         }
       }
