@@ -78,11 +78,31 @@ struct EllipseOptions {
   double max_relative_error = 0.02;     // thesis threshold for E_rel
   double max_sampson_distance_px = 0.5;
   int min_path_pixels = 20;             // shorter paths are not considered
-  // Bennett decision rules (thesis 2.6.1).
-  double bennett_min_score = 550.0;
-  double bennett_max_score = 840.0;
-  double bennett_min_quality = 255.0;
-  double bennett_max_quality = 375.0;
+  // A fitted ellipse must be traced by its path: arcs with a path pixel within
+  // trace_inlier_px, at least min_traced_fraction of the part inside the image and
+  // min_arc_fraction of the whole perimeter (a border-cut ellipse).
+  double trace_inlier_px = 1.0;
+  double min_traced_fraction = 0.95;
+  double min_arc_fraction = 0.3;
+  // Consensus fit for a target whose contour is partly replaced by an occluder's:
+  // refit on the inliers of the best of robust_iterations six-point fits, accepted when
+  // they trace robust_min_traced_fraction of the ellipse.
+  bool robust_fit = true;
+  int robust_iterations = 200;
+  double robust_min_traced_fraction = 0.75;
+  // Bennett decision rules (thesis 2.6.1) with thresholds measured on the synthetic
+  // library for this implementation (docs/ellipse-detection.md; the thesis's own were
+  // score 550-840, quality 255-375). 1e9: no upper limit.
+  double bennett_min_score = 340.0;
+  double bennett_max_score = 1e9;
+  double bennett_min_quality = 0.0;
+  double bennett_max_quality = 1e9;
+  double bennett_min_peak_fraction = 0.0625;  // peak score / point pairs of the path
+  int bennett_max_points = 256;               // longer paths are subsampled (0: never)
+  // Target selection: spot positions may deviate by this fraction of the disk radius.
+  double target_spot_tolerance = 0.2;
+  // NoTarget unless an ellipse holds the target's two spots (otherwise the best ellipse).
+  bool require_target_spots = false;
   // Report every target found instead of failing with AmbiguousTarget.
   bool report_all_targets = false;
 };

@@ -100,10 +100,20 @@ void visitSettings(Visitor& v, Settings& s) {
       v.field("max_relative_error", e.max_relative_error, 0.0, kInf);
       v.field("max_sampson_distance_px", e.max_sampson_distance_px, 0.0, kInf);
       v.field("min_path_pixels", e.min_path_pixels, 6, 1000000);
+      v.field("trace_inlier_px", e.trace_inlier_px, 0.0, kInf);
+      v.field("min_traced_fraction", e.min_traced_fraction, 0.0, 1.0);
+      v.field("min_arc_fraction", e.min_arc_fraction, 0.0, 1.0);
+      v.field("robust_fit", e.robust_fit);
+      v.field("robust_iterations", e.robust_iterations, 1, 100000);
+      v.field("robust_min_traced_fraction", e.robust_min_traced_fraction, 0.0, 1.0);
       v.field("bennett_min_score", e.bennett_min_score, 0.0, kInf);
       v.field("bennett_max_score", e.bennett_max_score, 0.0, kInf);
       v.field("bennett_min_quality", e.bennett_min_quality, 0.0, kInf);
       v.field("bennett_max_quality", e.bennett_max_quality, 0.0, kInf);
+      v.field("bennett_min_peak_fraction", e.bennett_min_peak_fraction, 0.0, 1.0);
+      v.field("bennett_max_points", e.bennett_max_points, 0, 100000);
+      v.field("target_spot_tolerance", e.target_spot_tolerance, 0.0, 1.0);
+      v.field("require_target_spots", e.require_target_spots);
       v.field("report_all_targets", e.report_all_targets);
     });
     v.object("rethreshold", [&] {

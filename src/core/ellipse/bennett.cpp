@@ -1,0 +1,212 @@
+#include "core/ellipse/bennett.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace imagepro {
+
+namespace {
+
+constexpr int kMargin = 2;  // accumulator cells around the path's bounding box
+// A ring is point-symmetric about the peak while sum|A(q) - A(q')| / sum(A(q) + A(q'))
+// over its mirrored cells stays below this (exact symmetry gives 0; subsampling and
+// float rounding give a few per cent).
+constexpr double kAsymmetryLimit = 0.25;
+
+struct Box {
+  int x0, y0, w, h;
+  bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < w && y < h; }
+};
+
+// Adds `weight` to every cell on the ray from m along u (unit), clipped to the box.
+// Steps of one cell along the dominant axis, so no cell is counted twice.
+inline void voteRay(float* acc, const Box& box, double mx, double my, double ux, double uy, float weight) {
+  double tmax = std::numeric_limits<double>::infinity();
+  // The box in cell-centre coordinates: [0, w-1] x [0, h-1], widened by half a cell.
+  const double lo_x = -0.5, hi_x = box.w - 0.5, lo_y = -0.5, hi_y = box.h - 0.5;
+  if (mx < lo_x || mx > hi_x || my < lo_y || my > hi_y) return;
+  if (ux > 0) tmax = std::min(tmax, (hi_x - mx) / ux);
+  if (ux < 0) tmax = std::min(tmax, (lo_x - mx) / ux);
+  if (uy > 0) tmax = std::min(tmax, (hi_y - my) / uy);
+  if (uy < 0) tmax = std::min(tmax, (lo_y - my) / uy);
+  const double step = 1.0 / std::max(std::abs(ux), std::abs(uy));
+  const int steps = static_cast<int>(tmax / step);
+  // 16.16 fixed point, offset by half a cell so that truncation rounds to the nearest cell.
+  constexpr double kOne = 65536.0;
+  std::int64_t x = static_cast<std::int64_t>((mx + 0.5) * kOne), y = static_cast<std::int64_t>((my + 0.5) * kOne);
+  const std::int64_t sx = static_cast<std::int64_t>(std::llround(ux * step * kOne));
+  const std::int64_t sy = static_cast<std::int64_t>(std::llround(uy * step * kOne));
+  const unsigned w = static_cast<unsigned>(box.w), h = static_cast<unsigned>(box.h);
+  for (int i = 0; i <= steps; ++i, x += sx, y += sy) {
+    const unsigned cx = static_cast<unsigned>(x >> 16), cy = static_cast<unsigned>(y >> 16);
+    if (cx < w && cy < h) acc[cy * w + cx] += weight;  // fails only by rounding at the box edge
+  }
+}
+
+}  // namespace
+
+Status bennettAccumulate(std::span<const EdgePixel> path, int max_points, BennettWorkspace& ws,
+                         BennettResult& out) {
+  out = BennettResult{};
+  // Pixels with a gradient (a tangent); evenly subsampled beyond max_points.
+  std::size_t usable = 0;
+  for (const EdgePixel& p : path) usable += (p.gx != 0 || p.gy != 0);
+  if (usable < 6) return Status::TooFewPoints;
+  const std::size_t keep = max_points > 0 ? std::min<std::size_t>(usable, static_cast<std::size_t>(max_points)) : usable;
+  ws.sample.clear();
+  {
+    std::size_t taken = 0, k = 0;  // k counts usable pixels
+    for (std::uint32_t i = 0; i < path.size(); ++i) {
+      if (path[i].gx == 0 && path[i].gy == 0) continue;
+      // The first usable pixel at or after taken * usable / keep.
+      if (taken < keep && k * keep >= taken * usable) {
+        ws.sample.push_back(i);
+        ++taken;
+      }
+      ++k;
+    }
+  }
+  const std::size_t m = ws.sample.size();
+  const double all_pairs = 0.5 * static_cast<double>(usable) * static_cast<double>(usable - 1);
+  const double sampled_pairs = 0.5 * static_cast<double>(m) * static_cast<double>(m - 1);
+  const float weight = static_cast<float>(all_pairs / sampled_pairs);
+
+  int minx = path[0].x, maxx = minx, miny = path[0].y, maxy = miny;
+  for (const EdgePixel& p : path) {
+    minx = std::min<int>(minx, p.x);
+    maxx = std::max<int>(maxx, p.x);
+    miny = std::min<int>(miny, p.y);
+    maxy = std::max<int>(maxy, p.y);
+  }
+  const Box box{minx - kMargin, miny - kMargin, maxx - minx + 1 + 2 * kMargin, maxy - miny + 1 + 2 * kMargin};
+  ws.accumulator.assign(static_cast<std::size_t>(box.w) * box.h, 0.0f);
+  float* acc = ws.accumulator.data();
+
+  for (std::size_t i = 0; i < m; ++i) {
+    const EdgePixel& a = path[ws.sample[i]];
+    const double x1 = a.x - box.x0, y1 = a.y - box.y0;
+    const double g1x = a.gx, g1y = a.gy;
+    const double c1 = g1x * x1 + g1y * y1;  // tangent line I1: g1 . X = c1
+    for (std::size_t j = i + 1; j < m; ++j) {
+      const EdgePixel& b = path[ws.sample[j]];
+      const double x2 = b.x - box.x0, y2 = b.y - box.y0;
+      const double g2x = b.gx, g2y = b.gy;
+      const double dx = x2 - x1, dy = y2 - y1;
+      // Both gradients must point across the chord to the same side of the curve:
+      // the sign condition on lambda of the thesis.
+      const double s1 = g1x * dx + g1y * dy, s2 = -(g2x * dx + g2y * dy);
+      if (!(s1 * s2 > 0.0)) continue;
+      const double mx = 0.5 * (x1 + x2), my = 0.5 * (y1 + y2);
+      const double det = g1x * g2y - g1y * g2x;
+      ++out.pairs;
+      if (det == 0.0) {  // parallel tangents: every ellipse of the family is centred at M
+        const int cx = static_cast<int>(std::lround(mx)), cy = static_cast<int>(std::lround(my));
+        if (box.contains(cx, cy)) acc[static_cast<std::size_t>(cy) * box.w + cx] += weight;
+        continue;
+      }
+      const double c2 = g2x * x2 + g2y * y2;
+      const double tx = (c1 * g2y - c2 * g1y) / det, ty = (g1x * c2 - g2x * c1) / det;
+      double ux = mx - tx, uy = my - ty;
+      const double len = std::hypot(ux, uy);
+      if (!(len > 1e-9)) continue;
+      ux /= len;
+      uy /= len;
+      voteRay(acc, box, mx, my, ux, uy, weight);
+    }
+  }
+  if (out.pairs == 0) return Status::NoTarget;
+
+  // Absolute peak.
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < ws.accumulator.size(); ++k)
+    if (acc[k] > acc[best]) best = k;
+  const int px = static_cast<int>(best % box.w), py = static_cast<int>(best / box.w);
+  out.score = acc[best];
+  if (!(out.score > 0.0f)) return Status::NoTarget;
+  out.peak_fraction = out.score / all_pairs;
+  const int border = std::min({px, py, box.w - 1 - px, box.h - 1 - py});
+  out.border_distance_px = border;
+
+  // Centre of symmetry: the peak cell or one of its corners, whichever makes the
+  // innermost rings most symmetric (a shape centred on a pixel corner splits its peak).
+  auto at = [&](int x, int y) -> double {
+    return box.contains(x, y) ? acc[static_cast<std::size_t>(y) * box.w + x] : 0.0;
+  };
+  int best_sx = 0, best_sy = 0;
+  double best_asym = std::numeric_limits<double>::infinity();
+  for (int sy = -1; sy <= 1; ++sy) {
+    for (int sx = -1; sx <= 1; ++sx) {
+      double diff = 0.0, sum = 0.0;
+      for (int dy = -3; dy <= 3; ++dy)
+        for (int dx = -3; dx <= 3; ++dx) {
+          const double u = at(px + dx, py + dy), v = at(px + sx - dx, py + sy - dy);
+          diff += std::abs(u - v);
+          sum += u + v;
+        }
+      const double asym = sum > 0.0 ? diff / sum : 0.0;
+      if (asym < best_asym - 1e-12) {
+        best_asym = asym;
+        best_sx = sx;
+        best_sy = sy;
+      }
+    }
+  }
+  out.cx = box.x0 + px + 0.5 * best_sx;
+  out.cy = box.y0 + py + 0.5 * best_sy;
+
+  // Rings about the peak, out to the nearest border: mean score (quality) and
+  // point-symmetry about the centre of symmetry.
+  // Per ring r: [0] sum of scores, [1] cells, [2] sum |A(q) - A(q')|, [3] sum A(q) + A(q').
+  const std::size_t rings = static_cast<std::size_t>(border) + 1;
+  ws.rings.assign(4 * rings, 0.0);
+  double* ring_sum = ws.rings.data();
+  double* ring_count = ring_sum + rings;
+  double* ring_diff = ring_count + rings;
+  double* ring_both = ring_diff + rings;
+  for (int dy = -border; dy <= border; ++dy) {
+    for (int dx = -border; dx <= border; ++dx) {
+      const int r = static_cast<int>(std::lround(std::sqrt(static_cast<double>(dx * dx + dy * dy))));
+      if (r > border) continue;
+      const double u = at(px + dx, py + dy);
+      ring_sum[r] += u;
+      ring_count[r] += 1.0;
+      const int mxq = px + best_sx - dx, myq = py + best_sy - dy;
+      if (box.contains(mxq, myq)) {
+        const double v = at(mxq, myq);
+        ring_diff[r] += std::abs(u - v);
+        ring_both[r] += u + v;
+      }
+    }
+  }
+  const double half = 0.5 * out.score;
+  out.half_radius_px = border;  // when the mean never falls to half inside the box
+  double prev = out.score;
+  for (int r = 1; r <= border; ++r) {
+    const double mean = ring_sum[r] / ring_count[r];
+    if (mean <= half) {
+      out.half_radius_px = (r - 1) + (prev - half) / (prev - mean);
+      break;
+    }
+    prev = mean;
+  }
+  out.quality = out.score / std::sqrt(std::max(out.half_radius_px, 0.25));
+  out.symmetry_px = border + 1;  // symmetric out to the border
+  for (int r = 1; r <= border; ++r) {
+    if (ring_both[r] > 0.0 && ring_diff[r] / ring_both[r] > kAsymmetryLimit) {
+      out.symmetry_px = r;
+      break;
+    }
+  }
+  return Status::Ok;
+}
+
+bool bennettAccepts(const EllipseOptions& o, const BennettResult& r) {
+  if (r.symmetry_px <= r.border_distance_px) return false;                                // rule 1
+  if (r.quality < o.bennett_min_quality || r.quality > o.bennett_max_quality) return false;  // rule 2
+  if (r.score < o.bennett_min_score || r.score > o.bennett_max_score) return false;          // rule 3
+  if (r.peak_fraction < o.bennett_min_peak_fraction) return false;
+  return true;
+}
+
+}  // namespace imagepro

@@ -1,0 +1,64 @@
+#pragma once
+// Bennett's ellipse detection as the thesis re-implemented it (thesis 2.6.1,
+// eqs. 2.26-2.28): one accumulator per connected path. Two edge points P1, P2 with
+// their tangent lines I1, I2 define the family of conics L^2 - lambda I1 I2 = 0
+// (L the chord P1P2). A, the quadratic part, is positive definite for lambda between 0
+// and a bound that depends on the pair; over that range the centre runs along the ray
+// that starts at the chord's midpoint M and leads away from T, the intersection of the
+// tangents (for parallel tangents it stays at M). Every pair adds one vote to each
+// accumulator cell on its ray, so a cell's score is the number of pairs that admit an
+// ellipse centred there. Pairs whose Sobel gradients point to opposite sides of the
+// chord (no ellipse with one interior has both tangents) are skipped.
+//
+// The absolute peak gives the score, the quality factor (score divided by the square
+// root of the radius of the circle on which the mean score is half the peak) and the
+// symmetry measure (the radius at which the accumulator stops being point-symmetric
+// about the peak). The decision rules of 2.6.1 are in bennettAccepts.
+//
+// Two departures from the thesis, both for speed, neither changing the peak:
+//  * the accumulator covers the path's bounding box (plus a margin) instead of the whole
+//    image. The centre of a closed path lies inside its box, and the box of a
+//    point-symmetric path is symmetric about its centre, so symmetry reaching the box's
+//    border takes the place of "symmetry reaching the closest image border";
+//  * a path longer than max_points is subsampled evenly to max_points pixels and each
+//    vote weighs (n (n-1)) / (m (m-1)), so scores estimate the all-pairs score.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/common/status.h"
+#include "core/edges/edge_list.h"
+#include "core/settings/options.h"
+
+namespace imagepro {
+
+struct BennettResult {
+  double score = 0.0;            // accumulator value at the absolute peak
+  double quality = 0.0;          // score / sqrt(half-score radius)
+  double half_radius_px = 0.0;   // radius of the circle with mean score = score / 2
+  double symmetry_px = 0.0;      // radius at which point symmetry about the peak vanishes
+  double border_distance_px = 0.0;  // from the peak to the nearest accumulator border
+  double cx = 0.0, cy = 0.0;     // centre of symmetry of the peak (pixels)
+  double peak_fraction = 0.0;    // score / all pairs of the path's pixels with a gradient
+  std::size_t pairs = 0;         // point pairs that voted
+};
+
+struct BennettWorkspace {
+  std::vector<float> accumulator;
+  std::vector<std::uint32_t> sample;  // indices of the sampled path pixels
+  std::vector<double> rings;           // per-ring sums about the peak
+};
+
+// TooFewPoints for fewer than 6 pixels with a gradient, NoTarget when no pair votes.
+Status bennettAccumulate(std::span<const EdgePixel> path, int max_points, BennettWorkspace& ws,
+                         BennettResult& out);
+
+// The thesis's decision rules 1-3 (rule 4, the highest score among the accepted paths,
+// is the caller's): symmetry reaching the accumulator border, quality and score within
+// their ranges; and, measured on the synthetic library, a peak that gathers at least
+// bennett_min_peak_fraction of the path's pairs (the raw score grows with the path's
+// length, this share does not).
+bool bennettAccepts(const EllipseOptions& options, const BennettResult& r);
+
+}  // namespace imagepro

@@ -1,0 +1,304 @@
+#include "core/ellipse/detect.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace imagepro {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The quick screen of the Sampson rule: Taubin's RMS distance runs close to the mean
+// Sampson distance for the paths that pass (library: within a factor 1.5), so a path
+// three times above the limit needs no per-point pass.
+constexpr double kTaubinScreen = 3.0;
+// A closed path shorter than this cannot outline a spot.
+constexpr std::size_t kMinSpotPixels = 4;
+// A spot's path (the white pixels around it) has an RMS radius within this factor of
+// the spot's expected radius r0 / R * sqrt(a b).
+constexpr double kSpotSizeFactor = 2.5;
+
+void summarise(std::span<const EdgePixel> path, PathSummary& s) {
+  int minx = path[0].x, maxx = minx, miny = path[0].y, maxy = miny;
+  double sx = 0, sy = 0, sxx = 0, syy = 0, sgx = 0, sgy = 0, sgp = 0;
+  const double ox = path[0].x, oy = path[0].y;  // origin near the path: no cancellation
+  for (const EdgePixel& p : path) {
+    minx = std::min<int>(minx, p.x);
+    maxx = std::max<int>(maxx, p.x);
+    miny = std::min<int>(miny, p.y);
+    maxy = std::max<int>(maxy, p.y);
+    const double x = p.x - ox, y = p.y - oy;
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    syy += y * y;
+    sgx += p.gx;
+    sgy += p.gy;
+    sgp += p.gx * x + p.gy * y;
+  }
+  const double n = static_cast<double>(path.size());
+  const double mx = sx / n, my = sy / n;
+  s.bbox = cv::Rect(minx, miny, maxx - minx + 1, maxy - miny + 1);
+  s.cx = ox + mx;
+  s.cy = oy + my;
+  s.rms_radius = std::sqrt(std::max(0.0, sxx / n - mx * mx + syy / n - my * my));
+  s.polarity = sgp - mx * sgx - my * sgy;  // sum of g . (p - centroid)
+  s.fit_status = Status::TooFewPoints;
+  s.accepted = false;
+  s.bennett = BennettResult{};
+  s.trace = EllipseTrace{};
+}
+
+bool errorAccepted(const EllipseOptions& o, const EllipseFit& fit, double mean_sampson_px) {
+  return o.accept_rule == FitAcceptRule::RelativeError ? fit.relative_error <= o.max_relative_error
+                                                       : mean_sampson_px <= o.max_sampson_distance_px;
+}
+
+// Fits and classifies every path long enough; fills ws.paths.
+void classify(const EllipseOptions& o, const Paths& paths, cv::Size image, EllipseWorkspace& ws) {
+  const std::size_t count = paths.pathCount();
+  ws.paths.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const auto path = paths.path(i);
+    PathSummary& s = ws.paths[i];
+    if (path.empty()) {
+      s = PathSummary{};
+      continue;
+    }
+    summarise(path, s);
+    if (path.size() < static_cast<std::size_t>(std::max(o.min_path_pixels, 6))) continue;
+    ConicMoments m;
+    m.add(path);
+    s.fit_status = fitEllipse(m, s.fit);
+    if (o.method == EllipseMethod::Bennett) {
+      if (!ok(s.fit_status)) continue;  // no ellipse parameters for this path
+      if (!ok(bennettAccumulate(path, o.bennett_max_points, ws.bennett, s.bennett))) continue;
+      s.accepted = bennettAccepts(o, s.bennett);
+      if (s.accepted) traceEllipse(s.fit, path, o.trace_inlier_px, image, s.trace);
+      continue;
+    }
+    if (!ok(s.fit_status)) continue;
+    // Screens that need no pass over the points.
+    if (o.accept_rule == FitAcceptRule::RelativeError && s.fit.relative_error > o.max_relative_error) continue;
+    if (o.accept_rule == FitAcceptRule::SampsonDistance &&
+        s.fit.taubin_px > kTaubinScreen * o.max_sampson_distance_px)
+      continue;
+    traceEllipse(s.fit, path, o.trace_inlier_px, image, s.trace);
+    s.fit.sampson_px = s.trace.mean_sampson_px;
+    s.accepted = fitAccepted(o, s.fit, s.trace, o.min_traced_fraction);
+  }
+}
+
+TargetDetection toDetection(const PathSummary& s, std::size_t index) {
+  TargetDetection d;
+  d.ellipse = s.fit.ellipse;
+  d.conic = s.fit.conic;
+  d.path_index = index;
+  d.fit_error = s.fit.relative_error;
+  d.sampson_px = s.trace.mean_sampson_px;
+  d.traced = s.trace.traced;
+  d.bennett_score = s.bennett.score;
+  d.bennett_quality = s.bennett.quality;
+  d.bennett_symmetry = s.bennett.symmetry_px;
+  d.bbox = s.bbox;
+  return d;
+}
+
+// Position of (x, y) in the frame where the ellipse is the unit circle.
+Eigen::Vector2d unitFrame(const Ellipse& e, double x, double y) {
+  const double t = e.angle_deg * kPi / 180.0;
+  const double c = std::cos(t), s = std::sin(t);
+  const double dx = x - e.cx, dy = y - e.cy;
+  return {(dx * c + dy * s) / e.a, (-dx * s + dy * c) / e.b};
+}
+
+bool isDarkSpotPath(const PathSummary& s, std::size_t pixels) {
+  return pixels >= kMinSpotPixels && s.polarity > 0.0;
+}
+
+// Dark closed paths of spot size inside `e` (other than `self`) into ws.spots; true when
+// there are exactly two and they sit where the target's spots sit. spots[0] is then the
+// centre spot.
+bool findSpots(const EllipseOptions& o, const TargetGeometry& g, const Paths& paths, const Ellipse& e,
+               std::size_t self, EllipseWorkspace& ws, std::array<std::size_t, 2>& spots) {
+  ws.spots.clear();
+  const double radius = std::sqrt(e.a * e.b);
+  const double expected = g.spot_radius_mm / g.radius_mm * radius;
+  for (std::size_t j = 0; j < ws.paths.size(); ++j) {
+    if (j == self) continue;
+    const PathSummary& s = ws.paths[j];
+    if (!isDarkSpotPath(s, paths.path(j).size())) continue;
+    if (s.rms_radius < expected / kSpotSizeFactor || s.rms_radius > expected * kSpotSizeFactor) continue;
+    if (unitFrame(e, s.cx, s.cy).norm() >= 1.0) continue;
+    ws.spots.push_back(j);
+    if (ws.spots.size() > 2) return false;
+  }
+  if (ws.spots.size() != 2) return false;
+  Eigen::Vector2d q0 = unitFrame(e, ws.paths[ws.spots[0]].cx, ws.paths[ws.spots[0]].cy);
+  Eigen::Vector2d q1 = unitFrame(e, ws.paths[ws.spots[1]].cx, ws.paths[ws.spots[1]].cy);
+  std::size_t centre = ws.spots[0], offset = ws.spots[1];
+  if (q1.norm() < q0.norm()) {
+    std::swap(q0, q1);
+    std::swap(centre, offset);
+  }
+  const double tol = o.target_spot_tolerance;
+  if (q0.norm() > tol) return false;
+  if (std::abs((q1 - q0).norm() - g.spot_offset_mm / g.radius_mm) > tol) return false;
+  spots = {centre, offset};
+  return true;
+}
+
+// Could this failed path be an occluded target? It must have a white interior and hold
+// two dark paths of spot size within its bounding box.
+bool mayHoldSpots(const TargetGeometry& g, const Paths& paths, std::size_t i, const EllipseWorkspace& ws) {
+  const PathSummary& s = ws.paths[i];
+  if (!(s.polarity < 0.0)) return false;
+  const double radius = 0.5 * std::sqrt(static_cast<double>(s.bbox.width) * s.bbox.height);
+  const double expected = g.spot_radius_mm / g.radius_mm * radius;
+  int found = 0;
+  for (std::size_t j = 0; j < ws.paths.size(); ++j) {
+    const PathSummary& t = ws.paths[j];
+    if (j == i || !isDarkSpotPath(t, paths.path(j).size())) continue;
+    if (t.rms_radius < expected / (2.0 * kSpotSizeFactor) || t.rms_radius > expected * 2.0 * kSpotSizeFactor)
+      continue;
+    if (!s.bbox.contains(cv::Point(static_cast<int>(t.cx), static_cast<int>(t.cy)))) continue;
+    ++found;
+  }
+  return found >= 2;
+}
+
+bool holdsDarkPath(const Paths& paths, const Ellipse& e, std::size_t self, const EllipseWorkspace& ws) {
+  for (std::size_t j = 0; j < ws.paths.size(); ++j) {
+    if (j == self || !isDarkSpotPath(ws.paths[j], paths.path(j).size())) continue;
+    if (ws.paths[j].rms_radius < std::sqrt(e.a * e.b) && unitFrame(e, ws.paths[j].cx, ws.paths[j].cy).norm() < 1.0)
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool fitAccepted(const EllipseOptions& o, const EllipseFit& fit, const EllipseTrace& trace,
+                 double min_traced_fraction) {
+  return errorAccepted(o, fit, trace.mean_sampson_px) &&
+         trace.traced >= min_traced_fraction * trace.observable - 1e-12 && trace.traced >= o.min_arc_fraction;
+}
+
+Status detectEllipses(const EllipseOptions& o, const Paths& paths, cv::Size image, EllipseWorkspace& ws,
+                      std::vector<TargetDetection>& out) {
+  out.clear();
+  classify(o, paths, image, ws);
+  for (std::size_t i = 0; i < ws.paths.size(); ++i)
+    if (ws.paths[i].accepted) out.push_back(toDetection(ws.paths[i], i));
+  return out.empty() ? Status::NoTarget : Status::Ok;
+}
+
+Status fitEllipseRobust(const EllipseOptions& o, std::span<const EdgePixel> path, cv::Size image,
+                        EllipseWorkspace& ws, EllipseFit& fit, EllipseTrace& trace) {
+  const std::size_t n = path.size();
+  if (n < 6) return Status::TooFewPoints;
+  ws.rng.seed(static_cast<std::mt19937::result_type>(n));  // reproducible per path
+  std::uniform_int_distribution<std::size_t> pick(0, n - 1);
+  const double inlier_px = o.trace_inlier_px;
+  std::size_t best_count = 0;
+  EllipseFit best, trial;
+  for (int it = 0; it < o.robust_iterations; ++it) {
+    std::array<std::size_t, 6> idx;
+    for (std::size_t k = 0; k < idx.size(); ++k) {
+      bool fresh;
+      do {
+        idx[k] = pick(ws.rng);
+        fresh = std::find(idx.begin(), idx.begin() + k, idx[k]) == idx.begin() + k;
+      } while (!fresh);
+    }
+    ConicMoments m;
+    for (std::size_t k : idx) m.add(path[k].x, path[k].y);
+    if (!ok(fitEllipse(m, trial))) continue;
+    std::size_t count = 0;
+    for (const EdgePixel& p : path) count += std::abs(sampsonDistance(trial, p.x, p.y)) <= inlier_px;
+    if (count > best_count) {
+      best_count = count;
+      best = trial;
+    }
+  }
+  if (best_count < 6) return Status::NotAnEllipse;
+  // Refit on the inliers, twice: the consensus ellipse is only as good as six points.
+  for (int round = 0; round < 2; ++round) {
+    ws.inliers.clear();
+    for (const EdgePixel& p : path)
+      if (std::abs(sampsonDistance(best, p.x, p.y)) <= inlier_px) ws.inliers.push_back(p);
+    ConicMoments m;
+    m.add(std::span<const EdgePixel>(ws.inliers));
+    const Status st = fitEllipse(m, trial);
+    if (!ok(st)) return st;
+    best = trial;
+  }
+  fit = best;
+  traceEllipse(fit, ws.inliers, inlier_px, image, trace);
+  fit.sampson_px = trace.mean_sampson_px;
+  return fitAccepted(o, fit, trace, o.robust_min_traced_fraction) ? Status::Ok : Status::NotAnEllipse;
+}
+
+Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Paths& paths, cv::Size image,
+                    EllipseWorkspace& ws, std::vector<TargetDetection>& out) {
+  out.clear();
+  classify(o, paths, image, ws);
+  std::array<std::size_t, 2> spots;
+  for (std::size_t i = 0; i < ws.paths.size(); ++i) {
+    const PathSummary& s = ws.paths[i];
+    if (!s.accepted || !(s.polarity < 0.0)) continue;
+    if (!findSpots(o, g, paths, s.fit.ellipse, i, ws, spots)) continue;
+    TargetDetection d = toDetection(s, i);
+    d.spot_paths = spots;
+    d.spots_found = true;
+    out.push_back(d);
+  }
+  if (out.empty() && o.robust_fit && o.method == EllipseMethod::DirectFit) {
+    for (std::size_t i = 0; i < ws.paths.size(); ++i) {
+      PathSummary& s = ws.paths[i];
+      const auto path = paths.path(i);
+      if (s.accepted || path.size() < static_cast<std::size_t>(std::max(o.min_path_pixels, 6))) continue;
+      if (!mayHoldSpots(g, paths, i, ws)) continue;
+      EllipseFit fit;
+      EllipseTrace trace;
+      if (!ok(fitEllipseRobust(o, path, image, ws, fit, trace))) continue;
+      if (!findSpots(o, g, paths, fit.ellipse, i, ws, spots)) continue;
+      s.fit = fit;
+      s.trace = trace;
+      TargetDetection d = toDetection(s, i);
+      d.spot_paths = spots;
+      d.spots_found = true;
+      d.robust = true;
+      out.push_back(d);
+    }
+  }
+  if (out.size() == 1) return Status::Ok;
+  if (out.size() > 1) return o.report_all_targets ? Status::Ok : Status::AmbiguousTarget;
+  if (o.require_target_spots) return Status::NoTarget;
+
+  // The thesis's choice among plain ellipses: lowest error (fit) or highest score (Bennett),
+  // ellipses that hold some dark path first.
+  std::size_t best = kNoPath;
+  bool best_holds = false;
+  double best_key = 0.0;
+  for (std::size_t i = 0; i < ws.paths.size(); ++i) {
+    const PathSummary& s = ws.paths[i];
+    if (!s.accepted || !(s.polarity < 0.0)) continue;
+    const bool holds = holdsDarkPath(paths, s.fit.ellipse, i, ws);
+    double key;
+    if (o.method == EllipseMethod::Bennett) key = -s.bennett.score;
+    else if (o.accept_rule == FitAcceptRule::RelativeError) key = s.fit.relative_error;
+    else key = s.trace.mean_sampson_px;
+    if (best == kNoPath || (holds && !best_holds) || (holds == best_holds && key < best_key)) {
+      best = i;
+      best_holds = holds;
+      best_key = key;
+    }
+  }
+  if (best == kNoPath) return Status::NoTarget;
+  out.push_back(toDetection(ws.paths[best], best));
+  return Status::Ok;
+}
+
+}  // namespace imagepro

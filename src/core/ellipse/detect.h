@@ -1,0 +1,104 @@
+#pragma once
+// Ellipse detection stage (thesis 2.6): decides which connected paths are ellipses and
+// which of them is the image of the target's white disk.
+//
+//  * Direct fit (2.6.2): every path of at least min_path_pixels is fitted
+//    (direct_fit.h) and accepted when its error is below the threshold of the accept
+//    rule (E_rel of eq. 2.42, or the mean Sampson distance in pixels) and the path
+//    traces the fitted ellipse (EllipseOptions::min_traced_fraction of the part inside
+//    the image). A path cut by the image border is an open arc and is fitted as such
+//    (thesis fig. 2.27).
+//  * Bennett (2.6.1): a path is accepted by the decision rules on its own accumulator
+//    (bennett.h); its ellipse parameters come from the direct fit of the same path.
+//
+// Target selection, beyond the thesis's "best ellipse": the target is a white disk with
+// two dark spots, so among the accepted ellipses with a white interior the one that
+// holds exactly two dark closed paths of the spots' size, one near the centre and the
+// other at spot_offset / radius from it, is the target. When none holds them, and
+// robust_fit is on, paths that enclose such spots but failed the fit (an occluder's
+// straight edges in the contour, thesis fig. 2.28) are refitted by consensus: the best
+// of robust_iterations six-point fits, refitted on its inliers, accepted when it traces
+// robust_min_traced_fraction of the ellipse. Two or more targets give AmbiguousTarget
+// (both reported) unless report_all_targets. Without any target, the thesis's rule picks
+// the best ellipse (lowest error, or highest Bennett score), preferring ellipses that
+// hold any dark path over plain disks, unless require_target_spots.
+#include <opencv2/core.hpp>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "core/common/geometry.h"
+#include "core/common/status.h"
+#include "core/connectivity/paths.h"
+#include "core/ellipse/bennett.h"
+#include "core/ellipse/direct_fit.h"
+#include "core/ellipse/ellipse.h"
+#include "core/settings/options.h"
+
+namespace imagepro {
+
+inline constexpr std::size_t kNoPath = std::numeric_limits<std::size_t>::max();
+
+struct TargetDetection {
+  Ellipse ellipse;
+  Conic conic = Conic::Zero();
+  std::size_t path_index = kNoPath;
+  double fit_error = 0.0;     // E_rel (eq. 2.42) of the fit
+  double sampson_px = 0.0;    // mean Sampson distance of the path (its inliers when robust)
+  double traced = 0.0;        // fraction of the ellipse's perimeter traced by the path
+  double bennett_score = 0.0, bennett_quality = 0.0, bennett_symmetry = 0.0;  // Bennett only
+  cv::Rect bbox;              // of the path's pixels
+  // Paths of the centre spot and the offset spot (kNoPath when not found).
+  std::array<std::size_t, 2> spot_paths{kNoPath, kNoPath};
+  bool spots_found = false;
+  bool robust = false;        // found by the consensus fit
+};
+
+// One path's summary, kept per frame in the workspace.
+struct PathSummary {
+  cv::Rect bbox;
+  double cx = 0.0, cy = 0.0;  // centroid of the pixels
+  double rms_radius = 0.0;    // root-mean-square distance of the pixels from the centroid
+  double polarity = 0.0;      // < 0: gradients point inwards (white interior), > 0: dark interior
+  Status fit_status = Status::TooFewPoints;
+  EllipseFit fit;
+  EllipseTrace trace;
+  BennettResult bennett;
+  bool accepted = false;
+};
+
+// Buffers reused from frame to frame.
+struct EllipseWorkspace {
+  std::vector<PathSummary> paths;
+  BennettWorkspace bennett;
+  std::vector<EdgePixel> inliers;
+  std::vector<std::size_t> spots;
+  std::mt19937 rng;
+};
+
+// Shape-only classification: every accepted path, in path order, into `out` (cleared
+// first, capacity reused). NoTarget when none is accepted. `image` is the frame size
+// (for the border-cut arcs; empty: no border).
+Status detectEllipses(const EllipseOptions& options, const Paths& paths, cv::Size image,
+                      EllipseWorkspace& ws, std::vector<TargetDetection>& out);
+
+// The target (see above): `out` holds the target, or every target found (status Ok with
+// report_all_targets, AmbiguousTarget otherwise). NoTarget when nothing qualifies.
+Status detectTarget(const EllipseOptions& options, const TargetGeometry& target, const Paths& paths,
+                    cv::Size image, EllipseWorkspace& ws, std::vector<TargetDetection>& out);
+
+// Consensus fit of one path (used by detectTarget; exposed for tests): Ok when the
+// refit traces min_traced of the observable ellipse and passes the accept rule on its
+// inliers. `fit` and `trace` describe the refit on the inliers.
+Status fitEllipseRobust(const EllipseOptions& options, std::span<const EdgePixel> path, cv::Size image,
+                        EllipseWorkspace& ws, EllipseFit& fit, EllipseTrace& trace);
+
+// The accept rule of the direct fit on a fit and its trace.
+bool fitAccepted(const EllipseOptions& options, const EllipseFit& fit, const EllipseTrace& trace,
+                 double min_traced_fraction);
+
+}  // namespace imagepro

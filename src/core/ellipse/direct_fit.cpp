@@ -1,0 +1,378 @@
+#include "core/ellipse/direct_fit.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace imagepro {
+
+namespace {
+
+// Position of x^i y^j in ConicMoments::sum: by degree d = i + j, then by j.
+constexpr int idx(int i, int j) {
+  const int d = i + j;
+  return d * (d + 1) / 2 + j;
+}
+
+constexpr double kBinomial[5][5] = {
+    {1, 0, 0, 0, 0}, {1, 1, 0, 0, 0}, {1, 2, 1, 0, 0}, {1, 3, 3, 1, 0}, {1, 4, 6, 4, 1}};
+
+inline void accumulate(std::array<double, 15>& s, double x, double y) {
+  const double x2 = x * x, xy = x * y, y2 = y * y;
+  s[0] += 1.0;
+  s[1] += x;
+  s[2] += y;
+  s[3] += x2;
+  s[4] += xy;
+  s[5] += y2;
+  s[6] += x2 * x;
+  s[7] += x2 * y;
+  s[8] += x * y2;
+  s[9] += y2 * y;
+  s[10] += x2 * x2;
+  s[11] += x2 * xy;
+  s[12] += x2 * y2;
+  s[13] += xy * y2;
+  s[14] += y2 * y2;
+}
+
+// Points whose best unconstrained conic is a hyperbola or parabola that fits this many
+// times better (algebraic residual) than the best ellipse are reported as NotAnEllipse.
+// Digitised ellipse arcs stay well below this ratio (tests: partial arcs).
+constexpr double kNonEllipseResidualRatio = 4.0;
+
+}  // namespace
+
+void ConicMoments::add(double x, double y) {
+  if (count == 0) {
+    origin_x = x;
+    origin_y = y;
+  }
+  accumulate(sum, x - origin_x, y - origin_y);
+  ++count;
+}
+
+void ConicMoments::add(std::span<const EdgePixel> points) {
+  if (points.empty()) return;
+  if (count == 0) {
+    origin_x = points[0].x;
+    origin_y = points[0].y;
+  }
+  // Separate accumulators let the additions of consecutive points overlap.
+  std::array<double, 15> s{};
+  const double ox = origin_x, oy = origin_y;
+  for (const EdgePixel& p : points) accumulate(s, p.x - ox, p.y - oy);
+  for (int k = 0; k < 15; ++k) sum[k] += s[k];
+  count += points.size();
+}
+
+void ConicMoments::add(std::span<const Eigen::Vector2d> points) {
+  for (const Eigen::Vector2d& p : points) add(p.x(), p.y());
+}
+
+Status fitEllipse(const ConicMoments& mom, EllipseFit& fit) {
+  const std::size_t n = mom.count;
+  if (n < 6) return Status::TooFewPoints;
+  const double inv_n = 1.0 / static_cast<double>(n);
+  const auto& s = mom.sum;
+
+  // Normalising similarity: centroid to the origin, mean squared distance 2.
+  const double mx = s[idx(1, 0)] * inv_n, my = s[idx(0, 1)] * inv_n;
+  const double cxx = s[idx(2, 0)] * inv_n - mx * mx;
+  const double cyy = s[idx(0, 2)] * inv_n - my * my;
+  const double cxy = s[idx(1, 1)] * inv_n - mx * my;
+  const double spread = 0.5 * (cxx + cyy);
+  if (!(spread > 0.0) || !std::isfinite(spread)) return Status::DegenerateFit;
+  const double scale = std::sqrt(spread);
+  // Collinear points: the normalised covariance (trace 2) has a zero eigenvalue.
+  if ((cxx * cyy - cxy * cxy) / (spread * spread) < 1e-10) return Status::DegenerateFit;
+
+  // Centred, scaled moments N(i, j) = sum(u^i v^j) by binomial expansion.
+  double nm[5][5] = {};
+  const double pmx[5] = {1, -mx, mx * mx, -mx * mx * mx, mx * mx * mx * mx};
+  const double pmy[5] = {1, -my, my * my, -my * my * my, my * my * my * my};
+  for (int i = 0; i <= 4; ++i) {
+    for (int j = 0; i + j <= 4; ++j) {
+      double acc = 0.0;
+      for (int p = 0; p <= i; ++p)
+        for (int q = 0; q <= j; ++q)
+          acc += kBinomial[i][p] * kBinomial[j][q] * pmx[i - p] * pmy[j - q] * s[idx(p, q)];
+      nm[i][j] = acc / std::pow(scale, i + j);
+    }
+  }
+  nm[1][0] = nm[0][1] = 0.0;  // exact by construction
+
+  // Scatter blocks (Halir-Flusser): quadratic monomials (u^2, uv, v^2), linear (u, v, 1).
+  Eigen::Matrix3d S1, S2, S3;
+  S1 << nm[4][0], nm[3][1], nm[2][2],  //
+      nm[3][1], nm[2][2], nm[1][3],    //
+      nm[2][2], nm[1][3], nm[0][4];
+  S2 << nm[3][0], nm[2][1], nm[2][0],  //
+      nm[2][1], nm[1][2], nm[1][1],    //
+      nm[1][2], nm[0][3], nm[0][2];
+  S3 << nm[2][0], nm[1][1], 0.0,  //
+      nm[1][1], nm[0][2], 0.0,    //
+      0.0, 0.0, nm[0][0];
+  const Eigen::Matrix3d T = -S3.inverse() * S2.transpose();  // linear part = T * quadratic part
+  Eigen::Matrix3d M = S1 + S2 * T;                            // reduced scatter matrix
+  M = 0.5 * (M + M.transpose()).eval();
+  const double trace = M.trace();
+  if (!std::isfinite(trace)) return Status::DegenerateFit;
+
+  // The best conic without the ellipse constraint (unit quadratic part): if the points
+  // leave more than one conic free, the fit is degenerate.
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> sym(M);
+  const Eigen::Vector3d sym_values = sym.eigenvalues();
+  if (sym_values(1) <= 1e-12 * std::max(trace, std::numeric_limits<double>::min()))
+    return Status::DegenerateFit;
+
+  // M a1 = lambda C1 a1 with C1 the upper 3x3 block of C (eq. 2.34): eigenvectors of
+  // C1^-1 M; the solution is the one with 4ac - b^2 > 0.
+  Eigen::Matrix3d CinvM;
+  CinvM.row(0) = 0.5 * M.row(2);
+  CinvM.row(1) = -M.row(1);
+  CinvM.row(2) = 0.5 * M.row(0);
+  Eigen::EigenSolver<Eigen::Matrix3d> es(CinvM);
+  if (es.info() != Eigen::Success) return Status::DegenerateFit;
+  int best = -1;
+  double best_residual = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d a1;
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(es.eigenvalues()(k).imag()) > 1e-9 * std::abs(es.eigenvalues()(k).real()) + 1e-300)
+      continue;
+    const Eigen::Vector3d v = es.eigenvectors().col(k).real();
+    const double cond = 4.0 * v(0) * v(2) - v(1) * v(1);
+    if (!(cond > 1e-12 * v.squaredNorm())) continue;
+    const double residual = v.dot(M * v) / cond;
+    if (residual < best_residual) {
+      best_residual = residual;
+      best = k;
+      a1 = v / std::sqrt(cond);  // a^T C a = 1 (eq. 2.37)
+    }
+  }
+  if (best < 0) return Status::NotAnEllipse;
+
+  // Hyperbola or parabola data: the unconstrained optimum is not an ellipse and explains
+  // the points far better than the best ellipse.
+  {
+    const Eigen::Vector3d v = sym.eigenvectors().col(0);
+    const double ellipse_residual = a1.dot(M * a1) / a1.squaredNorm();
+    if (4.0 * v(0) * v(2) - v(1) * v(1) <= 0.0 &&
+        ellipse_residual > kNonEllipseResidualRatio * std::max(sym_values(0), 0.0) + 1e-13 * trace)
+      return Status::NotAnEllipse;
+  }
+
+  const Eigen::Vector3d a2 = T * a1;
+  Conic an;
+  an << a1, a2;
+  Ellipse en;
+  if (!ellipseFromConic(an, en)) return Status::NotAnEllipse;
+
+  // Back to pixels: u = (x - x0) / scale.
+  const double x0 = mom.origin_x + mx, y0 = mom.origin_y + my;
+  const double is = 1.0 / scale, is2 = is * is;
+  const double A = an(0), B = an(1), C = an(2), D = an(3), E = an(4), F = an(5);
+  Conic cp;
+  cp << A * is2, B * is2, C * is2,                      //
+      D * is - (2.0 * A * x0 + B * y0) * is2,           //
+      E * is - (B * x0 + 2.0 * C * y0) * is2,           //
+      (A * x0 * x0 + B * x0 * y0 + C * y0 * y0) * is2 - (D * x0 + E * y0) * is + F;
+  if (cp(0) + cp(2) < 0.0) cp = -cp;
+  fit.conic = cp / cp.norm();
+  fit.ellipse.cx = x0 + scale * en.cx;
+  fit.ellipse.cy = y0 + scale * en.cy;
+  fit.ellipse.a = scale * en.a;
+  fit.ellipse.b = scale * en.b;
+  fit.ellipse.angle_deg = en.angle_deg;
+  const double residual = std::max(0.0, a1.dot(M * a1));
+  fit.relative_error = residual * inv_n;  // eq. 2.42
+  const double gradient = (4.0 * A * A + B * B) * nm[2][0] + (B * B + 4.0 * C * C) * nm[0][2] +
+                          4.0 * B * (A + C) * nm[1][1] + (D * D + E * E) * nm[0][0];
+  fit.taubin_px = gradient > 0.0 ? scale * std::sqrt(residual / gradient) : 0.0;
+  fit.sampson_px = 0.0;
+  fit.points = n;
+  fit.origin = {x0, y0};
+  fit.scale = scale;
+  // Orient so that the conic is negative inside (the quadratic part is positive definite).
+  fit.normalised = (an(0) + an(2) < 0.0) ? Conic(-an) : an;
+  return Status::Ok;
+}
+
+double sampsonDistance(const EllipseFit& fit, double x, double y) {
+  const Conic& c = fit.normalised;
+  const double is = 1.0 / fit.scale;
+  const double u = (x - fit.origin.x()) * is, v = (y - fit.origin.y()) * is;
+  const double f = c(0) * u * u + c(1) * u * v + c(2) * v * v + c(3) * u + c(4) * v + c(5);
+  const double gu = 2.0 * c(0) * u + c(1) * v + c(3);
+  const double gv = c(1) * u + 2.0 * c(2) * v + c(4);
+  const double g = std::sqrt(gu * gu + gv * gv);
+  if (!(g > 0.0)) return f < 0.0 ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+  return fit.scale * f / g;
+}
+
+namespace {
+template <class Points, class Get>
+double meanSampson(const EllipseFit& fit, const Points& points, Get get) {
+  if (points.empty()) return 0.0;
+  const Conic& c = fit.normalised;
+  const double is = 1.0 / fit.scale;
+  const double ox = fit.origin.x(), oy = fit.origin.y();
+  double total = 0.0;
+  for (const auto& p : points) {
+    const auto [x, y] = get(p);
+    const double u = (x - ox) * is, v = (y - oy) * is;
+    const double f = c(0) * u * u + c(1) * u * v + c(2) * v * v + c(3) * u + c(4) * v + c(5);
+    const double gu = 2.0 * c(0) * u + c(1) * v + c(3);
+    const double gv = c(1) * u + 2.0 * c(2) * v + c(4);
+    const double g2 = gu * gu + gv * gv;
+    // A point at the centre (zero gradient) is as far as the ellipse's minor semi-axis.
+    total += g2 > 0.0 ? std::abs(f) / std::sqrt(g2) : fit.ellipse.b * is;
+  }
+  return fit.scale * total / static_cast<double>(points.size());
+}
+}  // namespace
+
+double meanSampsonDistance(const EllipseFit& fit, std::span<const EdgePixel> points) {
+  return meanSampson(fit, points, [](const EdgePixel& p) {
+    return std::pair<double, double>{p.x, p.y};
+  });
+}
+
+double meanSampsonDistance(const EllipseFit& fit, std::span<const Eigen::Vector2d> points) {
+  return meanSampson(fit, points, [](const Eigen::Vector2d& p) {
+    return std::pair<double, double>{p.x(), p.y()};
+  });
+}
+
+Status fitEllipseDirect(std::span<const EdgePixel> points, EllipseFit& fit) {
+  ConicMoments m;
+  m.add(points);
+  const Status st = fitEllipse(m, fit);
+  if (ok(st)) fit.sampson_px = meanSampsonDistance(fit, points);
+  return st;
+}
+
+Status fitEllipseDirect(std::span<const Eigen::Vector2d> points, EllipseFit& fit) {
+  ConicMoments m;
+  m.add(points);
+  const Status st = fitEllipse(m, fit);
+  if (ok(st)) fit.sampson_px = meanSampsonDistance(fit, points);
+  return st;
+}
+
+}  // namespace imagepro
+
+namespace imagepro {
+
+namespace {
+
+constexpr double kTwoPi = 6.28318530717958647692;
+constexpr double kPi = 0.5 * kTwoPi;
+constexpr int kArcSamples = 128;  // parametric samples of the arc-length table
+constexpr int kMaxArcs = 512;
+constexpr double kArcLengthPx = 3.0;
+
+// Arc length of the ellipse from parametric angle 0, tabulated at 2*pi*k/kArcSamples.
+struct ArcTable {
+  std::array<double, kArcSamples + 1> s{};
+  double perimeter = 0.0;
+
+  ArcTable(double a, double b) {
+    double prev_x = a, prev_y = 0.0;
+    for (int k = 1; k <= kArcSamples; ++k) {
+      const double t = kTwoPi * k / kArcSamples;
+      const double x = a * std::cos(t), y = b * std::sin(t);
+      s[k] = s[k - 1] + std::hypot(x - prev_x, y - prev_y);
+      prev_x = x;
+      prev_y = y;
+    }
+    perimeter = s[kArcSamples];
+  }
+  double arcAt(double t) const {  // t in [0, 2 pi)
+    const double f = t / kTwoPi * kArcSamples;
+    const int k = std::min(kArcSamples - 1, static_cast<int>(f));
+    return s[k] + (f - k) * (s[k + 1] - s[k]);
+  }
+  double angleAt(double arc) const {
+    int k = 0;
+    while (k < kArcSamples - 1 && s[k + 1] < arc) ++k;
+    const double span = s[k + 1] - s[k];
+    const double f = span > 0.0 ? (arc - s[k]) / span : 0.0;
+    return kTwoPi * (k + f) / kArcSamples;
+  }
+};
+
+template <class Points, class Get>
+void trace(const EllipseFit& fit, const Points& points, double inlier_px, cv::Size image,
+           EllipseTrace& out, Get get) {
+  out = EllipseTrace{};
+  const Ellipse& e = fit.ellipse;
+  if (!(e.a > 0.0) || !(e.b > 0.0)) return;
+  const ArcTable table(e.a, e.b);
+  const int arcs = std::clamp(static_cast<int>(std::ceil(table.perimeter / kArcLengthPx)), 8, kMaxArcs);
+  std::array<unsigned char, kMaxArcs> traced{};
+  const double th = e.angle_deg * kPi / 180.0;
+  const double cs = std::cos(th), sn = std::sin(th);
+  const Conic& c = fit.normalised;
+  const double is = 1.0 / fit.scale;
+  const double ox = fit.origin.x(), oy = fit.origin.y();
+  double total = 0.0;
+  for (const auto& p : points) {
+    const auto [x, y] = get(p);
+    const double u = (x - ox) * is, v = (y - oy) * is;
+    const double f = c(0) * u * u + c(1) * u * v + c(2) * v * v + c(3) * u + c(4) * v + c(5);
+    const double gu = 2.0 * c(0) * u + c(1) * v + c(3);
+    const double gv = c(1) * u + 2.0 * c(2) * v + c(4);
+    const double g2 = gu * gu + gv * gv;
+    if (!(g2 > 0.0)) {  // the centre: as far as the minor semi-axis
+      total += e.b;
+      continue;
+    }
+    const double ig = 1.0 / std::sqrt(g2);
+    const double d = fit.scale * std::abs(f) * ig;
+    total += d;
+    if (d > inlier_px) continue;
+    ++out.inliers;
+    // The arc of the point's foot on the ellipse (one first-order projection step): the
+    // raw parametric angle of an off-curve point is far off near the ends of a thin ellipse.
+    const double step = f * ig * ig * fit.scale;
+    const double dx = x - step * gu - e.cx, dy = y - step * gv - e.cy;
+    double t = std::atan2((-dx * sn + dy * cs) / e.b, (dx * cs + dy * sn) / e.a);
+    if (t < 0.0) t += kTwoPi;
+    const int arc = std::min(arcs - 1, static_cast<int>(table.arcAt(t) / table.perimeter * arcs));
+    traced[arc] = 1;
+  }
+  out.mean_sampson_px = points.empty() ? 0.0 : total / static_cast<double>(points.size());
+  int n_traced = 0, n_observable = 0;
+  for (int k = 0; k < arcs; ++k) {
+    n_traced += traced[k];
+    if (image.empty()) {
+      ++n_observable;
+      continue;
+    }
+    const double t = table.angleAt((k + 0.5) * table.perimeter / arcs);
+    const double ex = e.a * std::cos(t), ey = e.b * std::sin(t);
+    const double px = e.cx + ex * cs - ey * sn, py = e.cy + ex * sn + ey * cs;
+    if (px >= -0.5 && py >= -0.5 && px <= image.width - 0.5 && py <= image.height - 0.5) ++n_observable;
+  }
+  out.traced = static_cast<double>(n_traced) / arcs;
+  out.observable = static_cast<double>(n_observable) / arcs;
+}
+
+}  // namespace
+
+void traceEllipse(const EllipseFit& fit, std::span<const EdgePixel> points, double inlier_px,
+                  cv::Size image, EllipseTrace& out) {
+  trace(fit, points, inlier_px, image, out,
+        [](const EdgePixel& p) { return std::pair<double, double>{p.x, p.y}; });
+}
+
+void traceEllipse(const EllipseFit& fit, std::span<const Eigen::Vector2d> points, double inlier_px,
+                  cv::Size image, EllipseTrace& out) {
+  trace(fit, points, inlier_px, image, out,
+        [](const Eigen::Vector2d& p) { return std::pair<double, double>{p.x(), p.y()}; });
+}
+
+}  // namespace imagepro
