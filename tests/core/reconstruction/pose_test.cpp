@@ -10,10 +10,12 @@
 #include <vector>
 
 #include "status_print.h"
+#include "test_scenes.h"
 
 namespace imagepro {
 namespace {
 
+using testing::makePose;
 constexpr double kDeg = M_PI / 180.0;
 
 Conic conicFromMatrix(const Eigen::Matrix3d& M) {
@@ -77,18 +79,6 @@ Conic fitConic(const std::vector<Eigen::Vector2d>& pts) {
   Eigen::Matrix3d N;  // normalised coordinates q = N x
   N << s, 0, -s * mean.x(), 0, s, -s * mean.y(), 0, 0, 1;
   return conicFromMatrix(N.transpose() * Mn * N);
-}
-
-// A pose with the given distance, tilt (angle of the target normal from the optical axis),
-// tilt azimuth and in-plane rotation, its centre imaged at pixel (u, v).
-Pose makePose(const CameraModel& cam, double z, double tiltDeg, double azimuthDeg, double rzDeg,
-              double u, double v) {
-  const Eigen::Vector3d axis(std::cos(azimuthDeg * kDeg), std::sin(azimuthDeg * kDeg), 0);
-  const Eigen::Matrix3d R = (Eigen::AngleAxisd(tiltDeg * kDeg, axis) *
-                             Eigen::AngleAxisd(rzDeg * kDeg, Eigen::Vector3d::UnitZ()))
-                                .toRotationMatrix();
-  const Eigen::Vector3d T((u - cam.u0()) * z / cam.fu(), (v - cam.v0()) * z / cam.fv(), z);
-  return poseFromRt(R, T);
 }
 
 double rotationError(const Pose& a, const Pose& b) {

@@ -1,0 +1,99 @@
+#pragma once
+// Target features for the reconstruction (thesis 5.2.2: crop, re-segmentation, feature
+// extraction): the smallest region holding the detected target plus a margin is cropped
+// and re-thresholded on its own histogram (None, Manual, AT-Orig, AT-Mod, thesis fig. 2.8),
+// then the rim's contour points and the two spots are taken from it. All positions are
+// image pixels as seen (distorted); the distortion correction comes after.
+//
+// Contour modes (the thesis names them, appendix A, without defining them):
+//  * 8 points ORG: from the detected centre, walk pixel by pixel along the 8 directions
+//    E, SE, S, ... (steps (1,0), (1,1), ...), first across the black centre spot, then
+//    across white; the last white pixel before black (or the crop's edge) is the point,
+//    at its pixel centre. As the earlier method did it: a spot, a noise speck or a dark
+//    blemish on a ray stops the walk early.
+//  * full path ORG: the disk's outer boundary straight from the binary crop: in every row
+//    the first and last white pixel, in every column the first and last white pixel, each
+//    pixel once, at its centre. White clutter or noise inside the crop becomes contour, and
+//    pixel centres lie on average 0.35-0.5 px inside the true rim (a smaller ellipse: the
+//    distance comes out too large).
+//  * 8 points MOD and full path MOD fix both: each point is searched only within a band
+//    of +-w pixels about the detected ellipse, from outside in, and must be followed by a
+//    second white pixel, so clutter, specks and the spots cannot be taken for the rim; and
+//    the point is placed on the pixel boundary between the last black and the first white
+//    pixel, where the threshold crossing lies, not on a pixel centre. 8 points MOD walks
+//    the 8 rays (k * 45 deg in the image) from the detected centre inwards in 1/16 px
+//    steps. Full path MOD scans rows across the parts of the rim that run closer to
+//    vertical and columns across the rest, one point per row or column crossing.
+//  * SubPixel (beyond the thesis, its recommendation 6.3): the crossings of full path MOD,
+//    moved to where the grey level, interpolated linearly along the row or column, crosses
+//    the mean of the two plateaus 2-3 px either side of the crossing: the edge's own
+//    mid-level, independent of the threshold, of blur and of illumination.
+// Spots: the dark 8-connected components (grey at most the middle of the crop's two class
+// means, so that a threshold close to one class cannot swell, shrink or merge them) inside
+// 0.85 of the detected ellipse with an area
+// between 1/5 and 5 times a spot's expected area (pi (r0/R)^2 a b); exactly two are
+// expected (SpotsNotFound, AmbiguousSpots otherwise). Each one's position is the centroid
+// weighted by darkness (local white level minus grey) over its box grown by 3 px, the white
+// level taken on that box's border; the one nearer the ellipse's centre is the centre spot.
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+#include "core/common/geometry.h"
+#include "core/common/status.h"
+#include "core/ellipse/ellipse.h"
+#include "core/segmentation/histogram.h"
+#include "core/settings/options.h"
+
+namespace imagepro {
+
+struct SpotRun {
+  int row = 0, x0 = 0, x1 = 0;  // crop coordinates, inclusive
+  int parent = 0;               // union-find over runs
+};
+
+struct SpotComponent {
+  int area = 0, x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // crop coordinates, inclusive box
+};
+
+struct FeatureWorkspace {
+  Histogram histogram{};  // of the crop
+  int threshold = -1;     // the crop's threshold
+  cv::Mat binary;         // the re-thresholded crop: 255 white, 0 black
+  cv::Mat visited;        // full path ORG: pixels already taken
+  std::vector<SpotRun> runs;
+  std::vector<int> componentOf;  // per root run: its component's index
+  std::vector<SpotComponent> components;
+};
+
+struct SpotFeatures {
+  Eigen::Vector2d centre_spot = Eigen::Vector2d::Zero();  // image px
+  Eigen::Vector2d offset_spot = Eigen::Vector2d::Zero();
+  int candidates = 0;  // components of spot size found
+};
+
+// Band half-width (px) about the detected ellipse in which MOD and SubPixel search the rim.
+double contourBandPx(const Ellipse& detected);
+
+// The crop: the detected ellipse's bounding box grown by `marginPx`, clipped to the image.
+// OutOfImage when nothing of it is in the image.
+Status targetCrop(const Ellipse& detected, int marginPx, cv::Size imageSize, cv::Rect& crop);
+
+// Re-thresholds grey(crop) into ws.binary. None keeps the frame's own threshold
+// `frameThreshold` (InvalidSettings when that is negative); the others compute it on the
+// crop's histogram (ThresholdUndefined on a flat crop).
+Status rethresholdCrop(const cv::Mat& grey, const cv::Rect& crop, const ThresholdOptions& rethreshold,
+                       int frameThreshold, FeatureWorkspace& ws, int& threshold);
+
+// Contour points of the rim (image px) by `mode`, from the binary crop (and, for SubPixel,
+// the grey frame). TooFewPoints when fewer than 6 are found.
+Status extractContour(ContourMode mode, const cv::Mat& grey, const cv::Rect& crop,
+                      const Ellipse& detected, FeatureWorkspace& ws,
+                      std::vector<Eigen::Vector2d>& points);
+
+// The two spots (image px): SpotsNotFound with fewer than two, AmbiguousSpots with more.
+Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& detected,
+                    const TargetGeometry& target, FeatureWorkspace& ws, SpotFeatures& spots);
+
+}  // namespace imagepro

@@ -1,0 +1,70 @@
+#pragma once
+// The reconstruction part of the pipeline (thesis 5.2.2, fig. 5.1): from a detected target
+// to its pose. Crop the target's region and re-threshold it, extract the rim's contour
+// points and the two spots (features.h), correct the lens distortion of those points
+// (undistort.h, thesis 4.5), fit the rim's ellipse (direct fit, thesis 2.6.2) and solve
+// the pose analytically (pose.h). Each step's status is kept; the first failure ends the
+// chain and is the result's status. No heap allocation once the workspace and the result
+// have grown to the largest target seen.
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+#include "core/common/geometry.h"
+#include "core/common/status.h"
+#include "core/ellipse/ellipse.h"
+#include "core/reconstruction/features.h"
+#include "core/settings/settings.h"
+
+namespace imagepro {
+
+// Status of each step; Stopped for a step the chain did not reach.
+struct ReconstructionSteps {
+  Status crop = Status::Stopped;
+  Status threshold = Status::Stopped;
+  Status contour = Status::Stopped;
+  Status spots = Status::Stopped;
+  Status fit = Status::Stopped;
+  Status pose = Status::Stopped;
+};
+
+struct ReconstructionResult {
+  Status status = Status::Stopped;
+  ReconstructionSteps steps;
+  cv::Rect crop;
+  int threshold = -1;
+  std::vector<Eigen::Vector2d> contour;      // image px as seen, for display
+  std::vector<Eigen::Vector2d> contour_ideal;  // the same, distortion corrected: what was fitted
+  SpotFeatures spots;                          // image px as seen
+  Eigen::Vector2d centre_spot_ideal = Eigen::Vector2d::Zero();
+  Eigen::Vector2d offset_spot_ideal = Eigen::Vector2d::Zero();
+  Conic conic = Conic::Zero();  // the rim's ellipse in ideal (undistorted) pixels
+  Ellipse ellipse;              // the same, geometric
+  double fit_sampson_px = 0.0;  // mean Sampson distance of the fitted points
+  Pose pose;
+};
+
+struct ReconstructionWorkspace {
+  FeatureWorkspace features;
+};
+
+// What the reconstruction needs from the settings.
+struct ReconstructionConfig {
+  CameraModel camera;
+  TargetGeometry target;
+  ThresholdOptions rethreshold;
+  ReconstructionOptions options;
+};
+ReconstructionConfig reconstructionConfig(const Settings& settings);
+
+// `detected` is the rim's ellipse found by the detection stage in the image as seen;
+// `frameThreshold` the threshold that stage used (for re-threshold None).
+Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey,
+                         const Ellipse& detected, int frameThreshold,
+                         ReconstructionWorkspace& ws, ReconstructionResult& out);
+Status reconstructTarget(const Settings& settings, const cv::Mat& grey, const Ellipse& detected,
+                         int frameThreshold, ReconstructionWorkspace& ws,
+                         ReconstructionResult& out);
+
+}  // namespace imagepro

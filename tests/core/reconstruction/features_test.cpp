@@ -1,0 +1,245 @@
+#include "core/reconstruction/features.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+#include <numeric>
+
+#include "core/reconstruction/pose.h"
+#include "core/source/virtual_renderer.h"
+#include "status_print.h"
+#include "test_scenes.h"
+
+namespace imagepro {
+namespace {
+
+using testing::makePose;
+using testing::seenRimEllipse;
+
+struct FeatureTest : ::testing::Test {
+  CameraModel cam;
+  TargetGeometry target;
+  VirtualSceneOptions scene;
+  FeatureWorkspace ws;
+  cv::Mat image;
+  cv::Rect crop;
+  int threshold = -1;
+  std::vector<Eigen::Vector2d> points;
+
+  // Fronto-parallel target at 800 mm: its rim is a circle of 50 px about `centre`.
+  Pose frontal(double rz = 10.0) { return makePose(cam, 800, 0, 0, rz, 300.3, 250.7); }
+  Eigen::Vector2d centreOf(const Pose& p) { return projectIdeal(cam, translation(p)); }
+  double rimRadiusPx(const Pose& p) { return cam.fu() * target.radius_mm / p.tz_mm; }
+
+  Status prepare(const Pose& pose, const Ellipse& detected, ThresholdMethod method = ThresholdMethod::AtMod) {
+    renderTarget(cam, target, scene, pose, image);
+    EXPECT_EQ(targetCrop(detected, 4, image.size(), crop), Status::Ok);
+    return rethresholdCrop(image, crop, {method, 128}, 128, ws, threshold);
+  }
+  // Signed radial deviations of the contour points from the true rim circle.
+  std::vector<double> deviations(const Pose& pose) {
+    std::vector<double> d;
+    for (const auto& p : points) d.push_back((p - centreOf(pose)).norm() - rimRadiusPx(pose));
+    return d;
+  }
+  static double mean(const std::vector<double>& v) {
+    return std::accumulate(v.begin(), v.end(), 0.0) / v.size();
+  }
+  static double maxAbs(const std::vector<double>& v) {
+    double m = 0;
+    for (double x : v) m = std::max(m, std::abs(x));
+    return m;
+  }
+};
+
+TEST(TargetCrop, IsTheEllipsesBoxWithItsMarginClippedToTheImage) {
+  cv::Rect crop;
+  ASSERT_EQ(targetCrop({100, 80, 30, 10, 0}, 4, {640, 480}, crop), Status::Ok);
+  EXPECT_EQ(crop, cv::Rect(66, 66, 69, 29));
+  ASSERT_EQ(targetCrop({100, 80, 30, 10, 45}, 0, {640, 480}, crop), Status::Ok);
+  const double h = std::sqrt(0.5 * (900 + 100));  // 22.36 both ways
+  EXPECT_EQ(crop.x, static_cast<int>(std::floor(100 - h)));
+  EXPECT_EQ(crop.width, static_cast<int>(std::ceil(100 + h)) - crop.x + 1);
+  ASSERT_EQ(targetCrop({5, 470, 30, 30, 0}, 4, {640, 480}, crop), Status::Ok);
+  EXPECT_EQ(crop, cv::Rect(0, 436, 40, 44));
+  EXPECT_EQ(targetCrop({-100, -100, 10, 10, 0}, 4, {640, 480}, crop), Status::OutOfImage);
+  EXPECT_EQ(targetCrop({100, 100, 0, 0, 0}, 4, {640, 480}, crop), Status::OutOfImage);
+  EXPECT_EQ(targetCrop({NAN, 100, 10, 10, 0}, 4, {640, 480}, crop), Status::OutOfImage);
+}
+
+TEST_F(FeatureTest, RethresholdMethods) {
+  const Pose pose = frontal();
+  const Ellipse e = seenRimEllipse(cam, target, pose);
+  ASSERT_EQ(prepare(pose, e, ThresholdMethod::AtMod), Status::Ok);
+  // Between the disk's white and the card's black.
+  EXPECT_GT(threshold, scene.black_level);
+  EXPECT_LT(threshold, scene.white_level);
+  EXPECT_EQ(ws.binary.size(), crop.size());
+  EXPECT_EQ(rethresholdCrop(image, crop, {ThresholdMethod::None, 0}, 77, ws, threshold), Status::Ok);
+  EXPECT_EQ(threshold, 77);
+  EXPECT_EQ(rethresholdCrop(image, crop, {ThresholdMethod::None, 0}, -1, ws, threshold),
+            Status::InvalidSettings);
+  EXPECT_EQ(rethresholdCrop(image, crop, {ThresholdMethod::Manual, 99}, -1, ws, threshold), Status::Ok);
+  EXPECT_EQ(threshold, 99);
+  // The binary crop is grey > t.
+  for (int y = 0; y < crop.height; y += 7)
+    for (int x = 0; x < crop.width; x += 5)
+      EXPECT_EQ(ws.binary.at<uchar>(y, x) != 0, image.at<uchar>(crop.y + y, crop.x + x) > 99);
+  const cv::Mat flat(480, 640, CV_8UC1, cv::Scalar(128));
+  EXPECT_EQ(rethresholdCrop(flat, crop, {ThresholdMethod::AtMod, 0}, -1, ws, threshold),
+            Status::ThresholdUndefined);
+  EXPECT_EQ(rethresholdCrop(cv::Mat(), crop, {ThresholdMethod::AtMod, 0}, -1, ws, threshold),
+            Status::EmptyFrame);
+  EXPECT_EQ(rethresholdCrop(flat, cv::Rect(600, 400, 100, 100), {ThresholdMethod::AtMod, 0}, -1, ws,
+                            threshold),
+            Status::OutOfImage);
+}
+
+// Full path ORG takes pixel centres: on average inside the rim. MOD puts the points on the
+// pixel boundary, SubPixel on the grey level's mid-crossing.
+TEST_F(FeatureTest, ContourModesAgainstTheTrueRim) {
+  const Pose pose = frontal();
+  const Ellipse e = seenRimEllipse(cam, target, pose);
+  scene.mode = RenderMode::Binary;
+  ASSERT_EQ(prepare(pose, e), Status::Ok);
+
+  ASSERT_EQ(extractContour(ContourMode::FullPathOrg, image, crop, e, ws, points), Status::Ok);
+  std::vector<double> d = deviations(pose);
+  EXPECT_GT(points.size(), 250u);  // every boundary pixel once: about 4 sqrt(2) r
+  EXPECT_LT(mean(d), -0.25);
+  EXPECT_GT(mean(d), -0.6);
+  for (const auto& p : points) EXPECT_EQ(p, p.array().round().matrix());  // pixel centres
+
+  ASSERT_EQ(extractContour(ContourMode::FullPathMod, image, crop, e, ws, points), Status::Ok);
+  d = deviations(pose);
+  EXPECT_GT(points.size(), 250u);
+  EXPECT_LT(std::abs(mean(d)), 0.08);
+  EXPECT_LT(maxAbs(d), 0.75);
+
+  scene.mode = RenderMode::Grey;
+  ASSERT_EQ(prepare(pose, e), Status::Ok);
+  ASSERT_EQ(extractContour(ContourMode::SubPixel, image, crop, e, ws, points), Status::Ok);
+  d = deviations(pose);
+  EXPECT_GT(points.size(), 250u);
+  EXPECT_LT(std::abs(mean(d)), 0.03);
+  EXPECT_LT(maxAbs(d), 0.25);  // linear interpolation across a sharp anti-aliased edge
+
+  // Blur moves a threshold crossing but not the mid-level crossing.
+  scene.blur_sigma_px = 1.5;
+  ASSERT_EQ(prepare(pose, e), Status::Ok);
+  ASSERT_EQ(extractContour(ContourMode::SubPixel, image, crop, e, ws, points), Status::Ok);
+  d = deviations(pose);
+  EXPECT_GT(points.size(), 200u);
+  EXPECT_LT(std::abs(mean(d)), 0.05);
+  EXPECT_LT(maxAbs(d), 0.2);
+}
+
+// The 8 rays at k * 45 deg; with Rz = 0 the offset spot lies on the east ray, where the
+// ORG walk from the centre stops at the spot; MOD walks in from outside the rim.
+TEST_F(FeatureTest, EightPointsOrgStopsAtTheOffsetSpotAndModDoesNot) {
+  const Pose pose = frontal(0.0);
+  const Ellipse e = seenRimEllipse(cam, target, pose);
+  scene.mode = RenderMode::Binary;
+  ASSERT_EQ(prepare(pose, e), Status::Ok);
+  ASSERT_EQ(extractContour(ContourMode::EightPointsOrg, image, crop, e, ws, points), Status::Ok);
+  ASSERT_EQ(points.size(), 8u);
+  const std::vector<double> org = deviations(pose);
+  EXPECT_LT(org[0], -0.4 * rimRadiusPx(pose));  // east: stopped at the offset spot's near edge
+  for (int k = 1; k < 8; ++k) EXPECT_LT(std::abs(org[k]), 1.5) << k;
+
+  ASSERT_EQ(extractContour(ContourMode::EightPointsMod, image, crop, e, ws, points), Status::Ok);
+  ASSERT_EQ(points.size(), 8u);
+  const std::vector<double> mod = deviations(pose);
+  EXPECT_LT(maxAbs(mod), 0.75);
+  for (int k = 0; k < 8; ++k) {  // on the rays
+    const Eigen::Vector2d dir = (points[k] - Eigen::Vector2d(e.cx, e.cy)).normalized();
+    EXPECT_NEAR(std::atan2(dir.y(), dir.x()), std::remainder(k * M_PI / 4, 2 * M_PI), 1e-9);
+  }
+}
+
+// A white bar touching the rim inside the crop: full path ORG follows it, MOD stays on the rim.
+TEST_F(FeatureTest, ClutterInTheCropFoolsOrgNotMod) {
+  cv::Mat img(480, 640, CV_8UC1, cv::Scalar(20));
+  const cv::Point2d c(320.25, 240.5);
+  const double r = 60;
+  for (int y = 0; y < img.rows; ++y)
+    for (int x = 0; x < img.cols; ++x)
+      if (std::hypot(x - c.x, y - c.y) < r) img.at<uchar>(y, x) = 230;
+  cv::rectangle(img, cv::Point(376, 180), cv::Point(390, 300), cv::Scalar(230), cv::FILLED);
+  const Ellipse e{c.x + 0.4, c.y - 0.3, r + 0.5, r - 0.2, 0};
+  ASSERT_EQ(targetCrop(e, 4, img.size(), crop), Status::Ok);
+  ASSERT_EQ(rethresholdCrop(img, crop, {ThresholdMethod::AtMod, 0}, -1, ws, threshold), Status::Ok);
+  auto worst = [&] {
+    double m = 0;
+    for (const auto& p : points) m = std::max(m, std::abs((p - Eigen::Vector2d(c.x, c.y)).norm() - r));
+    return m;
+  };
+  ASSERT_EQ(extractContour(ContourMode::FullPathOrg, img, crop, e, ws, points), Status::Ok);
+  EXPECT_GT(worst(), 5.0);
+  ASSERT_EQ(extractContour(ContourMode::FullPathMod, img, crop, e, ws, points), Status::Ok);
+  EXPECT_LT(worst(), 0.8);
+  ASSERT_EQ(extractContour(ContourMode::SubPixel, img, crop, e, ws, points), Status::Ok);
+  EXPECT_LT(worst(), 0.8);
+}
+
+TEST_F(FeatureTest, TooFewPointsOnABlackCrop) {
+  const cv::Mat black(480, 640, CV_8UC1, cv::Scalar(0));
+  const Ellipse e{320, 240, 50, 40, 0};
+  ASSERT_EQ(targetCrop(e, 4, black.size(), crop), Status::Ok);
+  ASSERT_EQ(rethresholdCrop(black, crop, {ThresholdMethod::Manual, 128}, -1, ws, threshold), Status::Ok);
+  for (ContourMode m : {ContourMode::EightPointsOrg, ContourMode::EightPointsMod, ContourMode::FullPathOrg,
+                        ContourMode::FullPathMod, ContourMode::SubPixel})
+    EXPECT_EQ(extractContour(m, black, crop, e, ws, points), Status::TooFewPoints);
+}
+
+// Spot centroids against the exact image of each spot's centre of area (the centre of the
+// spot's image conic), for poses across the range.
+TEST_F(FeatureTest, SpotCentroidsAndIdentity) {
+  for (RenderMode mode : {RenderMode::Grey, RenderMode::Binary}) {
+    scene.mode = mode;
+    const double tolerance = mode == RenderMode::Grey ? 0.03 : 0.2;
+    for (const Pose& pose : {makePose(cam, 500, 0, 0, 0, 320, 240), makePose(cam, 800, 40, 30, 120, 250, 300),
+                             makePose(cam, 1150, 55, -70, -175, 400, 200), makePose(cam, 700, 20, 90, 179.9, 350, 220)}) {
+      const Ellipse e = seenRimEllipse(cam, target, pose);
+      ASSERT_EQ(prepare(pose, e), Status::Ok);
+      SpotFeatures spots;
+      ASSERT_EQ(extractSpots(image, crop, e, target, ws, spots), Status::Ok);
+      EXPECT_EQ(spots.candidates, 2);
+      Eigen::Vector2d centre, offset;
+      ASSERT_TRUE(conicMatrixCentre(imageConicOfTargetCircle(cam, pose, 0, 0, target.spot_radius_mm), centre));
+      ASSERT_TRUE(conicMatrixCentre(
+          imageConicOfTargetCircle(cam, pose, target.spot_offset_mm, 0, target.spot_radius_mm), offset));
+      EXPECT_LT((spots.centre_spot - centre).norm(), tolerance) << pose.tz_mm;
+      EXPECT_LT((spots.offset_spot - offset).norm(), tolerance) << pose.tz_mm;
+    }
+  }
+}
+
+TEST_F(FeatureTest, SpotsNotFoundAmbiguousAndSpecksIgnored) {
+  const Pose pose = makePose(cam, 700, 25, 10, 60, 330, 230);
+  const Ellipse e = seenRimEllipse(cam, target, pose);
+  SpotFeatures spots;
+  // A plain disk.
+  TargetGeometry plain = target;
+  plain.spot_radius_mm = 0;
+  renderTarget(cam, plain, scene, pose, image);
+  ASSERT_EQ(targetCrop(e, 4, image.size(), crop), Status::Ok);
+  ASSERT_EQ(rethresholdCrop(image, crop, {ThresholdMethod::AtMod, 0}, -1, ws, threshold), Status::Ok);
+  EXPECT_EQ(extractSpots(image, crop, e, target, ws, spots), Status::SpotsNotFound);
+  EXPECT_EQ(spots.candidates, 0);
+  // The target with single-pixel specks: still two spots.
+  renderTarget(cam, target, scene, pose, image);
+  for (int k = 0; k < 6; ++k) image.at<uchar>(static_cast<int>(e.cy) + 3 * k - 20, static_cast<int>(e.cx) - 25 + k) = 0;
+  ASSERT_EQ(rethresholdCrop(image, crop, {ThresholdMethod::AtMod, 0}, -1, ws, threshold), Status::Ok);
+  EXPECT_EQ(extractSpots(image, crop, e, target, ws, spots), Status::Ok);
+  EXPECT_EQ(spots.candidates, 2);
+  // A third spot.
+  cv::circle(image, cv::Point(static_cast<int>(e.cx), static_cast<int>(e.cy - 0.5 * e.b)), 6, cv::Scalar(20), cv::FILLED);
+  ASSERT_EQ(rethresholdCrop(image, crop, {ThresholdMethod::AtMod, 0}, -1, ws, threshold), Status::Ok);
+  EXPECT_EQ(extractSpots(image, crop, e, target, ws, spots), Status::AmbiguousSpots);
+  EXPECT_EQ(spots.candidates, 3);
+}
+
+}  // namespace
+}  // namespace imagepro
