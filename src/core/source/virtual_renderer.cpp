@@ -658,4 +658,18 @@ void renderPattern(const CameraModel& camera, const TargetGeometry& target, cons
   render(camera, p, scene, pose, out, frame_seed);
 }
 
+bool targetInView(const CameraModel& camera, const TargetGeometry& target, const Pose& pose) {
+  const Eigen::Matrix3d R = rotationMatrix(pose);
+  const Eigen::Vector3d T = translation(pose);
+  if (!(R.col(2).dot(T) > 1e-9 * T.norm())) return false;  // edge-on or facing away
+  for (int k = 0; k < 360; ++k) {
+    const double a = k * M_PI / 180.0;
+    const Eigen::Vector3d P = R * Eigen::Vector3d(target.radius_mm * std::cos(a), target.radius_mm * std::sin(a), 0) + T;
+    if (!(P.z() > 0.0)) return false;
+    const Eigen::Vector2d p = distortPixel(camera, projectIdeal(camera, P));
+    if (!(p.x() >= 0.0 && p.y() >= 0.0 && p.x() <= camera.width - 1.0 && p.y() <= camera.height - 1.0)) return false;
+  }
+  return true;
+}
+
 }  // namespace imagepro

@@ -41,4 +41,8 @@ void renderPattern(const CameraModel& camera, const TargetGeometry& target,
                    const PatternGeometry& pattern, const VirtualSceneOptions& scene,
                    const Pose& pose, cv::Mat& out, std::uint64_t frame_seed = 0);
 
+// True when the target faces the camera and its whole disk (edge sampled at 1 degree,
+// distortion applied) lies in front of the camera and inside the image.
+bool targetInView(const CameraModel& camera, const TargetGeometry& target, const Pose& pose);
+
 }  // namespace imagepro

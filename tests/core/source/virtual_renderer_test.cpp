@@ -386,6 +386,21 @@ TEST(VirtualRenderer, InvisibleTargetsGiveAnEmptyScene) {
   SUCCEED();
 }
 
+TEST(VirtualRenderer, TargetInView) {
+  const CameraModel cam;
+  const TargetGeometry target;
+  EXPECT_TRUE(targetInView(cam, target, Pose{0, 0, 0, 0, 0, 800}));
+  EXPECT_TRUE(targetInView(cam, target, Pose{50, 0, 30, 0, 0, 800}));
+  // The disk's right edge at u = 319.5 + 800 * (tx + 50) / 800: inside up to tx = 270.
+  EXPECT_TRUE(targetInView(cam, target, Pose{0, 0, 0, 269, 0, 800}));
+  EXPECT_FALSE(targetInView(cam, target, Pose{0, 0, 0, 271, 0, 800}));
+  EXPECT_FALSE(targetInView(cam, target, Pose{0, 0, 0, 2000, 0, 800}));
+  EXPECT_FALSE(targetInView(cam, target, Pose{0, 0, 0, 0, 0, -800}));
+  EXPECT_FALSE(targetInView(cam, target, Pose{0, 90, 0, 0, 0, 800}));
+  EXPECT_FALSE(targetInView(cam, target, Pose{0, 180, 0, 0, 0, 800}));
+  EXPECT_FALSE(targetInView(cam, target, Pose{0, 0, 0, 0, 0, 60}));  // too close: overfills the image
+}
+
 TEST(VirtualRenderer, EmptyCameraGivesEmptyImage) {
   CameraModel cam;
   cam.width = 0;
