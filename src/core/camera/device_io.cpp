@@ -2,8 +2,11 @@
 
 #include <fcntl.h>
 #include <libv4l2.h>
+#include <linux/videodev2.h>
 #include <poll.h>
+#include <sys/ioctl.h>
 #include <sys/mman.h>
+#include <unistd.h>
 
 namespace imagepro {
 
@@ -11,7 +14,18 @@ namespace {
 
 class SystemDeviceIo final : public DeviceIo {
  public:
-  int open(const char* path) override { return v4l2_open(path, O_RDWR | O_NONBLOCK | O_CLOEXEC); }
+  int open(const char* path) override {
+    const int fd = ::open(path, O_RDWR | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return fd;
+    // libv4l2 takes over V4L2 devices only: on anything else it would fail the open
+    // and print to stderr, where the capability query should name the problem.
+    v4l2_capability cap{};
+    if (::ioctl(fd, VIDIOC_QUERYCAP, &cap) < 0) return fd;  // the libv4l2 calls pass it through
+    // Converted formats are listed too (marked emulated). Should libv4l2 refuse the
+    // device, the plain calls still work.
+    v4l2_fd_open(fd, V4L2_ENABLE_ENUM_FMT_EMULATION);
+    return fd;
+  }
   int close(int fd) override { return v4l2_close(fd); }
   int ioctl(int fd, unsigned long request, void* arg) override { return v4l2_ioctl(fd, request, arg); }
   void* map(int fd, std::size_t length, std::int64_t offset) override {

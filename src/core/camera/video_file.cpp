@@ -1,6 +1,7 @@
 #include "core/camera/video_file.h"
 
 #include <opencv2/imgproc.hpp>
+#include <opencv2/videoio/registry.hpp>
 
 #include <algorithm>
 #include <array>
@@ -35,8 +36,10 @@ Status VideoFileSource::open() {
     error_ = path_ + ": no such video file";
     return Status::FileNotFound;
   }
-  // FFmpeg first: the automatic choice would also take a device node or an image pattern.
-  if (!capture_.open(path_, cv::CAP_FFMPEG) && !capture_.open(path_, cv::CAP_ANY)) {
+  // FFmpeg where OpenCV has it: the automatic choice would also try a device node, an
+  // image-name pattern or GStreamer, each complaining on stderr about a file it cannot read.
+  const int backend = cv::videoio_registry::hasBackend(cv::CAP_FFMPEG) ? cv::CAP_FFMPEG : cv::CAP_ANY;
+  if (!capture_.open(path_, backend)) {
     error_ = path_ + ": not a video that can be decoded";
     return Status::FileUnreadable;
   }
