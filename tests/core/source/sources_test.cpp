@@ -5,6 +5,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <atomic>
+#include <iterator>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -159,6 +160,45 @@ TEST(VirtualSource, KeysFromAnotherThreadWhileRendering) {
   ASSERT_EQ(source->next(f), Status::Ok);
   EXPECT_NEAR(f.truth->tx_mm, 100 * settings.virtual_scene.key_step_mm, 1e-9);
   EXPECT_NEAR(f.truth->ty_mm, 100 * settings.virtual_scene.key_step_mm, 1e-9);
+}
+
+}  // namespace
+}  // namespace imagepro
+
+namespace imagepro {
+namespace {
+
+// data/samples holds frames rendered by tools/make-samples.sh; they must stay readable,
+// listed in truth.csv, and reproducible by the renderer.
+TEST(Samples, ReadableListedAndReproducible) {
+  const std::string dir = std::string(IMAGEPRO_DATA_DIR) + "/samples";
+  std::vector<std::string> paths;
+  std::string error;
+  ASSERT_EQ(listImageSequence(dir, paths, error), Status::Ok) << error;
+  ASSERT_GE(paths.size(), 6u);
+  std::string truth;
+  {
+    std::ifstream in(dir + "/truth.csv");
+    truth.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  ASSERT_EQ(truth.rfind("frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm", 0), 0u);
+  auto files = makeFileSource(paths);
+  Frame f;
+  for (size_t i = 0; i < paths.size(); ++i) {
+    ASSERT_EQ(files->next(f), Status::Ok) << files->lastError();
+    EXPECT_EQ(f.image.size(), cv::Size(640, 480));
+    EXPECT_NE(truth.find("\n" + f.name + ",ok,"), std::string::npos) << f.name;
+  }
+  EXPECT_EQ(files->next(f), Status::EndOfStream);
+
+  // The plain sample is the shipped settings' grey scene at its pose, pixel for pixel.
+  Settings settings;
+  ASSERT_EQ(loadSettings(std::string(IMAGEPRO_DATA_DIR) + "/settings.json", settings, error), Status::Ok) << error;
+  settings.virtual_scene.mode = RenderMode::Grey;
+  cv::Mat rendered, stored;
+  renderTarget(settings.camera, settings.target, settings.virtual_scene, Pose{0, 0, 0, 0, 0, 800}, rendered);
+  ASSERT_EQ(readGreyImage(dir + "/sample01_facing.png", stored, error), Status::Ok) << error;
+  EXPECT_EQ(cv::norm(rendered, stored, cv::NORM_INF), 0.0);
 }
 
 }  // namespace
