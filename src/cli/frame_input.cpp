@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include "core/camera/camera_source.h"
+#include "core/camera/video_file.h"
 #include "core/source/image_file.h"
 #include "core/source/sources.h"
 
@@ -27,9 +29,73 @@ class FrameLimit final : public FrameSource {
   std::int64_t left_;
 };
 
+// Ends a camera stream after a failure that needs a restart: the loop gets the
+// failure once (so it is reported), then EndOfStream.
+class EndAfterCameraFailure final : public FrameSource {
+ public:
+  explicit EndAfterCameraFailure(std::unique_ptr<FrameSource> inner) : inner_(std::move(inner)) {}
+  Status next(Frame& out) override {
+    if (failed_) return Status::EndOfStream;
+    const Status s = inner_->next(out);
+    failed_ = isCameraFailure(s);
+    return s;
+  }
+  std::string lastError() const override { return inner_->lastError(); }
+  double frameRateHz() const override { return inner_->frameRateHz(); }
+  std::string describe() const override { return inner_->describe(); }
+
+ private:
+  std::unique_ptr<FrameSource> inner_;
+  bool failed_ = false;
+};
+
+// "640x480" -> width and height.
+void parseSize(const std::string& text, int& width, int& height) {
+  const auto x = text.find('x');
+  try {
+    std::size_t used_w = 0, used_h = 0;
+    if (x != std::string::npos) {
+      width = std::stoi(text.substr(0, x), &used_w);
+      height = std::stoi(text.substr(x + 1), &used_h);
+    }
+    if (x != std::string::npos && used_w == x && used_h == text.size() - x - 1 && width > 0 && height > 0) return;
+  } catch (const std::exception&) {
+  }
+  throw UsageError("--size: \"" + text + "\" is not WIDTHxHEIGHT, e.g. 640x480");
+}
+
+std::unique_ptr<FrameSource> openCameraOrVideo(const Args& args, const Settings& settings) {
+  std::unique_ptr<FrameSource> source;
+  if (const auto device = args.value("camera")) {
+    CameraRequest request;
+    request.device = *device;
+    request.width = settings.camera.width;
+    request.height = settings.camera.height;
+    if (const auto size = args.value("size")) parseSize(*size, request.width, request.height);
+    request.frame_rate_hz = args.number("fps", request.frame_rate_hz);
+    if (!(request.frame_rate_hz > 0.0)) throw UsageError("--fps must be above 0");
+    auto camera = std::make_unique<CameraSource>(request);
+    if (!ok(camera->start())) throw InputError(camera->lastError());
+    source = std::make_unique<EndAfterCameraFailure>(std::move(camera));
+  } else {
+    if (args.has("size") || args.has("fps")) throw UsageError("--size and --fps go with --camera");
+    auto video = std::make_unique<VideoFileSource>(*args.value("video"), VideoPacing::AsFastAsPossible);
+    if (!ok(video->open())) throw InputError(video->lastError());
+    source = std::move(video);
+  }
+  if (!args.has("frames")) return source;
+  const int frames = args.integer("frames", 0);
+  if (frames < 1) throw UsageError("--frames must be at least 1");
+  return std::make_unique<FrameLimit>(std::move(source), frames);
+}
+
 }  // namespace
 
 std::unique_ptr<FrameSource> openFrameInput(const Args& args, const Settings& settings) {
+  const int inputs = args.has("virtual") + args.has("camera") + args.has("video") + !args.positionals().empty();
+  if (inputs > 1) throw UsageError("give one input: image files, --virtual, --camera or --video");
+  if (args.has("camera") || args.has("video")) return openCameraOrVideo(args, settings);
+  if (args.has("size") || args.has("fps")) throw UsageError("--size and --fps go with --camera");
   if (args.has("virtual")) {
     if (!args.positionals().empty()) throw UsageError("give either --virtual or image files, not both");
     const int frames = args.integer("frames", 100);

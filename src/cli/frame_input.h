@@ -1,6 +1,6 @@
 #pragma once
-// Turns the command line's input (image files, folders, list files, --virtual) into
-// a FrameSource, shared by every command that runs the pipeline.
+// Turns the command line's input (image files, folders, list files, --virtual,
+// --camera, --video) into a FrameSource, shared by every command that runs the pipeline.
 #include <memory>
 
 #include "cli/command.h"
@@ -9,14 +9,20 @@
 namespace imagepro::cli {
 
 // Options understood: positionals (images, folders, .txt lists), --virtual,
-// --frames N (virtual: how many; default 100), --video FILE, --camera DEV.
-// Throws UsageError when no input is given, InputError when it cannot be opened.
+// --camera DEV [--size WxH] [--fps N], --video FILE, and --frames N (how many; the
+// virtual source defaults to 100, camera and video run until they end).
+// Throws UsageError when no input is given, InputError when it cannot be opened
+// (a missing camera: one line naming the device). A camera stream ends after the
+// first failure that needs a restart (CameraDisconnected ...), which is reported.
 std::unique_ptr<FrameSource> openFrameInput(const Args& args, const Settings& settings);
 
 // The option names openFrameInput reads, for rejectUnknown and --help.
-inline const std::vector<std::string> kFrameInputOptions{"virtual", "frames"};
+inline const std::vector<std::string> kFrameInputOptions{"virtual", "frames", "camera", "size", "fps", "video"};
 inline constexpr const char* kFrameInputHelp =
     "input: IMAGES... (files, folders in natural order, or .txt lists of paths)\n"
-    "       or --virtual [--frames N] (the Virtual source of the settings, default 100 frames)";
+    "       or --virtual [--frames N] (the Virtual source of the settings, default 100 frames)\n"
+    "       or --camera /dev/videoN [--size WxH] [--fps N] [--frames N] (a V4L2 camera; default\n"
+    "          size that of the settings' camera, 25 frames/s; imagepro-cli devices lists them)\n"
+    "       or --video FILE [--frames N] (AVI, MP4, MKV ..., every frame as fast as possible)";
 
 }  // namespace imagepro::cli
