@@ -15,7 +15,11 @@
 // scaled by 1 + g * (u / (width - 1) - 0.5)), Gaussian blur, Gaussian noise.
 // Clutter (white bars and rectangles fixed in the image, placed from scene.seed) lies
 // behind the card, so it never overlaps it; it is drawn in both modes.
-// A target behind the camera or seen edge-on is simply not in the image.
+// A target behind the camera or seen edge-on is simply not in the image; seen from
+// behind, the card (and the pattern's sheet) shows its plain black back. Image points
+// beyond the fold of an extreme distortion model (no undistorted position) see the
+// background. Per-camera tables and work images are kept per thread between calls, so
+// steady-state rendering does not allocate (except `out` on a size change).
 #include <opencv2/core.hpp>
 
 #include <cstdint>
