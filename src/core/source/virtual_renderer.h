@@ -19,7 +19,7 @@
 // behind, the card (and the pattern's sheet) shows its plain black back. Image points
 // beyond the fold of an extreme distortion model (no undistorted position) see the
 // background. Per-camera tables and work images are kept per thread between calls, so
-// steady-state rendering does not allocate (except `out` on a size change).
+// steady-state rendering allocates nothing itself (OpenCV's blur may, internally).
 #include <opencv2/core.hpp>
 
 #include <cstdint>
