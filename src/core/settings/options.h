@@ -139,6 +139,7 @@ struct CalibrationOptions {
   int max_iterations = 10;        // not converged by then: Diverged
   int min_matches = 20;           // fewer matched spots in an image: TooFewMatches, the image is skipped
   double max_ambiguous_fraction = 0.05;  // more ambiguous spots than this in an image: MatchAmbiguity
+  bool refine_pose = true;  // correct each image's pattern pose from its spots with the distortion (off: the thesis)
 };
 
 struct PipelineOptions {

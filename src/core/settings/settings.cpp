@@ -150,6 +150,7 @@ void visitSettings(Visitor& v, Settings& s) {
       v.field("max_iterations", p.calibration.max_iterations, 1, 1000);
       v.field("min_matches", p.calibration.min_matches, 4, 1000000);
       v.field("max_ambiguous_fraction", p.calibration.max_ambiguous_fraction, 0.0, 1.0);
+      v.field("refine_pose", p.calibration.refine_pose);
     });
   });
 }
