@@ -1,0 +1,273 @@
+#include "app/main_window.h"
+
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDockWidget>
+#include <QFontDatabase>
+#include <QIcon>
+#include <QImageReader>
+#include <QLabel>
+#include <QScrollArea>
+#include <QSettings>
+#include <QSplitter>
+#include <QStatusBar>
+#include <QTabWidget>
+#include <QTimer>
+#include <QVBoxLayout>
+
+#include "app/control_panel.h"
+#include "app/frame_view.h"
+#include "app/histogram_chart.h"
+#include "app/message_banner.h"
+#include "app/output_panel.h"
+#include "app/pose_plots.h"
+#include "app/results_text.h"
+#include "app/settings_binder.h"
+#include "app/source_panel.h"
+#include "app/stage_time_chart.h"
+#include "app/worker.h"
+
+// The resources live in the imagepro_app static library: make sure they are linked in.
+static void initImageProResources() { Q_INIT_RESOURCE(imagepro); }
+
+namespace imagepro::app {
+
+namespace {
+
+constexpr int kChartRefreshMs = 100;
+
+QIcon applicationIcon() {
+  // The SVG is the drawing; the PNG rendering of it serves where Qt has no SVG plugin.
+  if (QImageReader::supportedImageFormats().contains("svg")) return QIcon(QStringLiteral(":/icons/imagepro.svg"));
+  return QIcon(QStringLiteral(":/icons/imagepro.png"));
+}
+
+}  // namespace
+
+MainWindow::MainWindow(QWidget* parent)
+    : QMainWindow(parent), binder_(new SettingsBinder(settings_, this)), worker_(new Worker(settings_)) {
+  initImageProResources();
+  setObjectName(QStringLiteral("mainWindow"));
+  setWindowTitle(tr("ImagePro"));
+  setWindowIcon(applicationIcon());
+  setAcceptDrops(true);
+  setDockOptions(QMainWindow::AnimatedDocks | QMainWindow::AllowTabbedDocks);
+
+  buildResultsArea();
+  buildDocks();
+  buildStatusBar();
+  buildMenus();
+  connectWorker();
+
+  chart_timer_ = new QTimer(this);
+  connect(chart_timer_, &QTimer::timeout, this, [this] {
+    if (!charts_dirty_ || !latest_) return;
+    charts_dirty_ = false;
+    if (histogram_->isVisible()) histogram_->setHistogram(latest_->result.histogram, latest_->result.threshold);
+    if (stage_times_->isVisible()) stage_times_->setTimes(latest_->result.times);
+  });
+  chart_timer_->start(kChartRefreshMs);
+
+  connect(binder_, &SettingsBinder::changed, this, &MainWindow::onSettingsEdited);
+  qApp->installEventFilter(this);
+  worker_->moveToThread(&thread_);
+  connect(&thread_, &QThread::finished, worker_, &QObject::deleteLater);
+  thread_.setObjectName(QStringLiteral("imagepro-worker"));
+  thread_.start();
+  restoreLayout();
+}
+
+MainWindow::~MainWindow() {
+  qApp->removeEventFilter(this);
+  worker_->stop();
+  thread_.quit();
+  thread_.wait();
+}
+
+void MainWindow::buildResultsArea() {
+  view_ = new FrameView;
+  view_->setObjectName(QStringLiteral("frameView"));
+  results_text_ = new QLabel;
+  results_text_->setObjectName(QStringLiteral("resultsText"));
+  results_text_->setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
+  results_text_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  results_text_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
+  results_text_->setMargin(6);
+  results_text_->setText(tr("No results yet."));
+  auto* text_scroll = new QScrollArea;
+  text_scroll->setWidget(results_text_);
+  text_scroll->setWidgetResizable(true);
+  text_scroll->setMinimumHeight(80);
+
+  results_area_ = new QWidget;
+  results_area_->setObjectName(QStringLiteral("resultsArea"));
+  auto* splitter = new QSplitter(Qt::Vertical);
+  splitter->setObjectName(QStringLiteral("resultsSplitter"));
+  splitter->addWidget(view_);
+  splitter->addWidget(text_scroll);
+  splitter->setStretchFactor(0, 4);
+  splitter->setStretchFactor(1, 1);
+  auto* results_layout = new QVBoxLayout(results_area_);
+  results_layout->setContentsMargins(0, 0, 0, 0);
+  results_layout->addWidget(splitter);
+
+  banner_ = new MessageBanner;
+  auto* central = new QWidget;
+  auto* layout = new QVBoxLayout(central);
+  layout->setContentsMargins(2, 2, 2, 2);
+  layout->setSpacing(2);
+  layout->addWidget(banner_);
+  layout->addWidget(results_area_, 1);
+  setCentralWidget(central);
+  connect(view_, &FrameView::painted, this, [this] { worker_->markDisplayed(); });
+}
+
+void MainWindow::buildDocks() {
+  control_panel_ = new ControlPanel(*binder_);
+  auto* controls = new QDockWidget(tr("Control Panel"), this);
+  controls->setObjectName(QStringLiteral("controlDock"));
+  controls->setWidget(control_panel_);
+  controls->setMinimumWidth(280);
+  addDockWidget(Qt::LeftDockWidgetArea, controls);
+
+  plots_ = new PosePlots;
+  plots_->setObjectName(QStringLiteral("posePlots"));
+  histogram_ = new HistogramChart;
+  histogram_->setObjectName(QStringLiteral("histogramChart"));
+  stage_times_ = new StageTimeChart;
+  stage_times_->setObjectName(QStringLiteral("stageTimeChart"));
+  auto* tabs = new QTabWidget;
+  tabs->setObjectName(QStringLiteral("plotTabs"));
+  tabs->addTab(plots_, tr("Parameters"));
+  tabs->addTab(histogram_, tr("Histogram"));
+  tabs->addTab(stage_times_, tr("Stage times"));
+  auto* plots = new QDockWidget(tr("Plots"), this);
+  plots->setObjectName(QStringLiteral("plotDock"));
+  plots->setWidget(tabs);
+  addDockWidget(Qt::BottomDockWidgetArea, plots);
+  connect(plots_, &PosePlots::message, this, &MainWindow::showInfo);
+  connect(plots_, &PosePlots::error, this, &MainWindow::showError);
+  connect(tabs, &QTabWidget::currentChanged, this, [this] { charts_dirty_ = true; });
+
+  SourcePanel* source = control_panel_->sourcePanel();
+  connect(source, &SourcePanel::openFileRequested, this, [this] { openDialog(false); });
+  connect(source, &SourcePanel::startRequested, this, [this] { startSource(); });
+  connect(source, &SourcePanel::stopRequested, this, &MainWindow::stopSource);
+  OutputPanel* output = control_panel_->outputPanel();
+  connect(output, &OutputPanel::dataOutToggled, this, &MainWindow::dataOutDialog);
+  connect(output, &OutputPanel::screenshotRequested, this, &MainWindow::screenshotDialog);
+  connect(output, &OutputPanel::settingsDialogRequested, this, &MainWindow::settingsDialog);
+  connect(output, &OutputPanel::saveSettingsRequested, this, &MainWindow::saveSettingsDialog);
+  connect(output, &OutputPanel::loadSettingsRequested, this, &MainWindow::loadSettingsDialog);
+  connect(output, &OutputPanel::restoreDefaultsRequested, this, &MainWindow::restoreDefaults);
+}
+
+void MainWindow::buildStatusBar() {
+  status_source_ = new QLabel(tr("no source"));
+  status_rate_ = new QLabel;
+  status_state_ = new QLabel;
+  status_source_->setObjectName(QStringLiteral("statusSource"));
+  status_rate_->setObjectName(QStringLiteral("statusRate"));
+  status_state_->setObjectName(QStringLiteral("statusState"));
+  statusBar()->addPermanentWidget(status_state_, 1);
+  statusBar()->addPermanentWidget(status_rate_);
+  statusBar()->addPermanentWidget(status_source_);
+}
+
+void MainWindow::connectWorker() {
+  connect(worker_, &Worker::packetReady, this, &MainWindow::onPacket);
+  connect(worker_, &Worker::runningChanged, this, [this](bool running) {
+    control_panel_->sourcePanel()->setRunning(running);
+    if (!running) status_rate_->setText(tr("stopped"));
+  });
+  connect(worker_, &Worker::sourceChanged, this, [this](const QString& description) {
+    status_source_->setText(description);
+    control_panel_->sourcePanel()->setDescription(description);
+  });
+  connect(worker_, &Worker::errorOccurred, this, &MainWindow::showError);
+  connect(worker_, &Worker::dataOutChanged, this, [this](const QString& path) {
+    data_out_path_ = path;
+    control_panel_->outputPanel()->setDataOutPath(path);
+    if (!path.isEmpty()) showInfo(tr("Data Out writing to %1").arg(path));
+  });
+}
+
+void MainWindow::onPacket(const DisplayPacketPtr& packet) {
+  ++packets_shown_;
+  latest_ = packet;
+  charts_dirty_ = true;
+  view_->setPacket(packet);
+  results_text_->setText(formatResults(*packet));
+  plots_->append(packet->history);
+  const FrameResult& r = packet->result;
+  status_rate_->setText(tr("%1 Hz  CPU %2 %").arg(packet->hz, 0, 'f', 1).arg(packet->cpu_percent, 0, 'f', 0));
+  status_state_->setText(statusInWords(r.status));
+  status_state_->setStyleSheet(r.status == Status::Ok || r.status == Status::Stopped ? QString()
+                                                                                     : QStringLiteral("color: #b00020;"));
+  if (!packet->source.isEmpty()) status_source_->setText(packet->source);
+  // A hidden view will not paint: let the worker send the next packet anyway.
+  if (!view_->isVisible()) worker_->markDisplayed();
+  emit packetShown();
+}
+
+void MainWindow::onSettingsEdited() { worker_->setSettings(settings_); }
+
+void MainWindow::setSettings(const Settings& settings) {
+  settings_ = settings;
+  binder_->refresh();
+  worker_->setSettings(settings_);
+}
+
+void MainWindow::restoreDefaults() {
+  setSettings(Settings{});
+  showInfo(tr("Every option restored to its default"));
+}
+
+void MainWindow::selectSource(SourceKind kind) { control_panel_->sourcePanel()->setKind(kind); }
+
+void MainWindow::startSource() {
+  const SourceKind kind = control_panel_->sourcePanel()->kind();
+  if (kind == SourceKind::File) {
+    openDialog(false);
+    return;
+  }
+  worker_->start(kind);
+}
+
+void MainWindow::stopSource() { worker_->stop(); }
+
+void MainWindow::openPaths(const QStringList& paths) {
+  if (paths.isEmpty()) return;
+  selectSource(SourceKind::File);
+  worker_->openFiles(paths);
+}
+
+QString MainWindow::resultsText() const { return results_text_->text(); }
+
+void MainWindow::showError(const QString& message) {
+  last_error_ = message;
+  banner_->showError(message);
+  statusBar()->showMessage(message, 15000);
+}
+
+void MainWindow::showInfo(const QString& message) { statusBar()->showMessage(message, 5000); }
+
+void MainWindow::restoreLayout() {
+  QSettings store;
+  restoreGeometry(store.value(QStringLiteral("window/geometry")).toByteArray());
+  restoreState(store.value(QStringLiteral("window/state")).toByteArray());
+  control_panel_->restoreState(store);
+  last_dir_ = store.value(QStringLiteral("lastDirectory")).toString();
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  QSettings store;
+  store.setValue(QStringLiteral("window/geometry"), saveGeometry());
+  store.setValue(QStringLiteral("window/state"), saveState());
+  store.setValue(QStringLiteral("lastDirectory"), last_dir_);
+  control_panel_->saveState(store);
+  worker_->stop();
+  QMainWindow::closeEvent(event);
+}
+
+}  // namespace imagepro::app

@@ -1,0 +1,22 @@
+#pragma once
+// A dismissable error line at the top of the results area, so a problem (an
+// unreadable file, malformed settings) is seen where the user is looking.
+#include <QFrame>
+
+class QLabel;
+
+namespace imagepro::app {
+
+class MessageBanner : public QFrame {
+  Q_OBJECT
+
+ public:
+  explicit MessageBanner(QWidget* parent = nullptr);
+  void showError(const QString& text);
+  QString text() const;
+
+ private:
+  QLabel* label_;
+};
+
+}  // namespace imagepro::app

@@ -1,0 +1,188 @@
+#include "app/pose_plots.h"
+
+#include <QChart>
+#include <QChartView>
+#include <QFileDialog>
+#include <QGridLayout>
+#include <QHBoxLayout>
+#include <QLineSeries>
+#include <QPushButton>
+#include <QTimer>
+#include <QVBoxLayout>
+#include <QValueAxis>
+
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+
+#include "core/common/atomic_file.h"
+#include "core/common/pose_csv.h"
+
+namespace imagepro::app {
+
+namespace {
+
+constexpr std::size_t kMaxRecorded = 200000;  // about two hours at 25 Hz
+constexpr std::size_t kShown = 600;           // points on screen per series
+constexpr int kRedrawMs = 100;
+
+const char* const kTitles[6] = {"Rx [deg]", "Ry [deg]", "Rz [deg]", "Tx [mm]", "Ty [mm]", "Tz [mm]"};
+
+double component(const Pose& p, int i) {
+  const double v[6] = {p.rx_deg, p.ry_deg, p.rz_deg, p.tx_mm, p.ty_mm, p.tz_mm};
+  return v[i];
+}
+
+}  // namespace
+
+PosePlots::PosePlots(QWidget* parent) : QWidget(parent), pause_(new QPushButton(tr("Pause"))), redraw_timer_(new QTimer(this)) {
+  auto* grid = new QGridLayout;
+  grid->setSpacing(0);
+  for (int i = 0; i < 6; ++i) {
+    Plot& p = plots_[static_cast<std::size_t>(i)];
+    p.chart = new QChart;
+    p.chart->setTitle(QLatin1String(kTitles[i]));
+    p.chart->legend()->hide();
+    p.chart->setMargins(QMargins(2, 2, 2, 2));
+    p.measured = new QLineSeries;
+    p.truth = new QLineSeries;
+    QPen truth_pen(QColor(120, 120, 120));
+    truth_pen.setStyle(Qt::DashLine);
+    p.truth->setPen(truth_pen);
+    p.measured->setPen(QPen(QColor(30, 110, 220), 1.5));
+    p.chart->addSeries(p.truth);
+    p.chart->addSeries(p.measured);
+    p.x = new QValueAxis;
+    p.y = new QValueAxis;
+    p.x->setLabelFormat(QStringLiteral("%.0f"));
+    p.x->setTitleText(tr("t [s]"));
+    p.chart->addAxis(p.x, Qt::AlignBottom);
+    p.chart->addAxis(p.y, Qt::AlignLeft);
+    for (QLineSeries* s : {p.measured, p.truth}) {
+      s->setUseOpenGL(false);
+      s->attachAxis(p.x);
+      s->attachAxis(p.y);
+    }
+    auto* view = new QChartView(p.chart);
+    view->setRenderHint(QPainter::Antialiasing);
+    view->setMinimumSize(180, 130);
+    grid->addWidget(view, i / 3, i % 3);
+  }
+  pause_->setObjectName(QStringLiteral("plotsPause"));
+  pause_->setCheckable(true);
+  pause_->setToolTip(tr("Freeze the plots; recording goes on"));
+  auto* clear_button = new QPushButton(tr("Clear"));
+  clear_button->setObjectName(QStringLiteral("plotsClear"));
+  auto* export_button = new QPushButton(tr("Export CSV..."));
+  export_button->setObjectName(QStringLiteral("plotsExport"));
+  export_button->setToolTip(tr("Write every recorded frame's parameters (and ground truth) to a CSV file"));
+  auto* buttons = new QHBoxLayout;
+  buttons->addWidget(pause_);
+  buttons->addWidget(clear_button);
+  buttons->addWidget(export_button);
+  buttons->addStretch(1);
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(2, 2, 2, 2);
+  layout->addLayout(buttons);
+  layout->addLayout(grid, 1);
+
+  connect(pause_, &QPushButton::toggled, this, [this](bool on) {
+    pause_->setText(on ? tr("Resume") : tr("Pause"));
+    if (!on) dirty_ = true;
+  });
+  connect(clear_button, &QPushButton::clicked, this, &PosePlots::clear);
+  connect(export_button, &QPushButton::clicked, this, &PosePlots::exportInteractive);
+  connect(redraw_timer_, &QTimer::timeout, this, [this] {
+    if (dirty_ && !isPaused() && isVisible()) redraw();
+  });
+  redraw_timer_->start(kRedrawMs);  // at most ten redraws a second, whatever the frame rate
+}
+
+bool PosePlots::isPaused() const { return pause_->isChecked(); }
+void PosePlots::setPaused(bool paused) { pause_->setChecked(paused); }
+
+void PosePlots::append(const std::vector<PoseSample>& samples) {
+  if (samples.empty()) return;
+  if (recorded_.size() + samples.size() > kMaxRecorded)
+    recorded_.erase(recorded_.begin(), recorded_.begin() + static_cast<std::ptrdiff_t>(
+                                                                std::min(recorded_.size(), samples.size() + kMaxRecorded / 10)));
+  recorded_.insert(recorded_.end(), samples.begin(), samples.end());
+  dirty_ = true;
+}
+
+void PosePlots::clear() {
+  recorded_.clear();
+  dirty_ = true;
+  redraw();
+}
+
+void PosePlots::redraw() {
+  dirty_ = false;
+  const std::size_t first = recorded_.size() > kShown ? recorded_.size() - kShown : 0;
+  const double t0 = first < recorded_.size() ? recorded_[first].timestamp_s : 0.0;
+  const double t1 = recorded_.empty() ? 1.0 : recorded_.back().timestamp_s;
+  for (int i = 0; i < 6; ++i) {
+    Plot& p = plots_[static_cast<std::size_t>(i)];
+    QList<QPointF> measured, truth;
+    measured.reserve(static_cast<qsizetype>(recorded_.size() - first));
+    double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
+    for (std::size_t k = first; k < recorded_.size(); ++k) {
+      const PoseSample& s = recorded_[k];
+      if (s.pose) {
+        const double v = component(*s.pose, i);
+        measured.append({s.timestamp_s, v});
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+      if (s.truth) {
+        const double v = component(*s.truth, i);
+        truth.append({s.timestamp_s, v});
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+    }
+    p.measured->replace(measured);
+    p.truth->replace(truth);
+    if (lo > hi) {
+      lo = -1.0;
+      hi = 1.0;
+    }
+    const double pad = std::max(0.5, 0.08 * (hi - lo));
+    p.y->setRange(lo - pad, hi + pad);
+    p.x->setRange(t0, std::max(t1, t0 + 1.0));
+  }
+}
+
+bool PosePlots::exportCsv(const QString& path, QString& error) const {
+  std::string text = poseCsvHeader("timestamp_s,truth_Rx_deg,truth_Ry_deg,truth_Rz_deg,truth_Tx_mm,truth_Ty_mm,truth_Tz_mm");
+  text += '\n';
+  for (const PoseSample& s : recorded_) {
+    char extra[256];
+    if (s.truth) {
+      const Pose& t = *s.truth;
+      std::snprintf(extra, sizeof extra, "%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f", s.timestamp_s, t.rx_deg, t.ry_deg, t.rz_deg,
+                    t.tx_mm, t.ty_mm, t.tz_mm);
+    } else {
+      std::snprintf(extra, sizeof extra, "%.6f,,,,,,", s.timestamp_s);
+    }
+    text += poseCsvRow(std::to_string(s.index), s.status, s.pose, extra);
+    text += '\n';
+  }
+  std::string why;
+  if (!writeFileAtomically(path.toStdString(), text, why)) {
+    error = QString::fromStdString(why);
+    return false;
+  }
+  return true;
+}
+
+void PosePlots::exportInteractive() {
+  const QString path = QFileDialog::getSaveFileName(this, tr("Export plotted parameters"), QStringLiteral("poses.csv"),
+                                                    tr("CSV files (*.csv);;All files (*)"));
+  if (path.isEmpty()) return;
+  QString why;
+  if (exportCsv(path, why)) emit message(tr("Exported %1 frames to %2").arg(recorded_.size()).arg(path));
+  else emit error(tr("Export failed: %1").arg(why));
+}
+
+}  // namespace imagepro::app
