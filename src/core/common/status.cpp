@@ -1,5 +1,7 @@
 #include "core/common/status.h"
 
+#include <ostream>
+
 namespace imagepro {
 
 namespace {
@@ -50,5 +52,7 @@ StatusText text(Status s) {
 
 std::string_view statusName(Status s) { return text(s).name; }
 std::string_view statusMessage(Status s) { return text(s).message; }
+
+std::ostream& operator<<(std::ostream& os, Status s) { return os << statusName(s); }
 
 }  // namespace imagepro

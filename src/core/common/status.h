@@ -3,6 +3,7 @@
 // should check their inputs and outputs ... and return a success or error code").
 // A stage never throws across the frame loop; the frame result carries the status.
 #include <cstdint>
+#include <iosfwd>
 #include <string_view>
 
 namespace imagepro {
@@ -57,5 +58,8 @@ std::string_view statusName(Status s);
 std::string_view statusMessage(Status s);
 
 inline bool ok(Status s) { return s == Status::Ok; }
+
+// Writes the status's name (so test failures and logs read "NoTarget", not a number).
+std::ostream& operator<<(std::ostream& os, Status s);
 
 }  // namespace imagepro

@@ -85,10 +85,11 @@ struct EllipseOptions {
   double min_traced_fraction = 0.95;
   double min_arc_fraction = 0.3;
   // Consensus fit for a target whose contour is partly replaced by an occluder's:
-  // refit on the inliers of the best of robust_iterations six-point fits, accepted when
-  // they trace robust_min_traced_fraction of the ellipse.
+  // refit on the inliers of the best six-point fit (at most robust_iterations, fewer
+  // once 99 % sure of one clean sample), accepted when they trace
+  // robust_min_traced_fraction of the ellipse.
   bool robust_fit = true;
-  int robust_iterations = 200;
+  int robust_iterations = 1000;
   double robust_min_traced_fraction = 0.75;
   // Bennett decision rules (thesis 2.6.1) with thresholds measured on the synthetic
   // library for this implementation (docs/ellipse-detection.md; the thesis's own were
@@ -120,9 +121,9 @@ struct TrackingOptions {
   int degree = 2;                  // 0..3
   double min_r = 0.9;              // critical correlation coefficient
   double reduction_percent = 10.0; // "red [%]": damps shrinking of the region
-  double enlarge_px = 10.0;        // fixed pixels added to width and height
+  double enlarge_px = 20.0;        // fixed pixels added to width and height
   double enlarge_scale = 0.1;      // fixed scale factor
-  double enlarge_speed_scale = 0.01; // scale per pixel/frame of the target centre's speed
+  double enlarge_speed_scale = 0.02; // scale per pixel/frame of the target centre's speed
 };
 
 struct DisplayOptions {

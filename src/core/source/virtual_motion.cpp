@@ -76,8 +76,9 @@ Pose virtualPoseAt(const VirtualSceneOptions& scene, double t_s) {
       axisValue(pose, m.axis) += m.amplitude * std::sin(2.0 * M_PI * phase);
       break;
     case MotionKind::SawTooth: {
-      const double x = phase + 0.5;
-      axisValue(pose, m.axis) += m.amplitude * (2.0 * (x - std::floor(x)) - 1.0);
+      // Triangle wave: |.| of a saw-tooth shifted so it starts at 0 going up.
+      const double x = phase + 0.25;
+      axisValue(pose, m.axis) += m.amplitude * (1.0 - 4.0 * std::abs(x - std::floor(x) - 0.5));
       break;
     }
     case MotionKind::Pendulum: {

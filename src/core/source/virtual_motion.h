@@ -5,9 +5,10 @@
 //
 //  * static:    initial_pose.
 //  * sinusoid:  initial_pose with  amplitude * sin(2 pi t / period)  added on `axis`.
-//  * saw-tooth: initial_pose with  amplitude * (2 frac(t / period + 1/2) - 1)  added
-//               on `axis`: 0 at t = 0, rising linearly to +amplitude, jumping to
-//               -amplitude at half a period and rising again.
+//  * saw-tooth: the thesis's zig-zag (its tracking errors of table 3.1 rule out a jump):
+//               initial_pose with a triangle wave of `amplitude` added on `axis`: 0 at
+//               t = 0, rising at constant speed 4 amplitude / period to +amplitude at a
+//               quarter period, down to -amplitude at three quarters, and back.
 //  * pendulum:  the target hangs at `length` below `pivot` (+Y is down) and swings in
 //               the vertical plane of heading swing_axis_deg about Y (0: along camera X);
 //               its centre moves on the circle and the target turns with the rope, so

@@ -77,7 +77,8 @@ void RegionTracker::observe(double t, const cv::Rect2d& box, const std::optional
 
 std::optional<cv::Rect> RegionTracker::estimate(const TrackingOptions& o, const CameraModel& camera,
                                                 const TargetGeometry& target, double t, cv::Size image) {
-  if (o.mode == TrackingMode::Off || count_ == 0) return std::nullopt;
+  // One detection tells where the target was, not where it goes: track from two on.
+  if (o.mode == TrackingMode::Off || count_ < 2) return std::nullopt;
   const bool use3d = o.mode == TrackingMode::Parameters3D;
   if (use3d && !fromNewest(0).has_pose) return std::nullopt;
 

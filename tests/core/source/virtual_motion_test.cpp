@@ -54,18 +54,19 @@ TEST(VirtualMotion, SinusoidAboutRz) {
   expectPose(virtualPoseAt(s, 1.5), want);
 }
 
-TEST(VirtualMotion, SawToothRisesLinearlyAndJumps) {
+TEST(VirtualMotion, SawToothZigZagsAtConstantSpeed) {
   const auto s = motionScene(MotionKind::SawTooth, PoseAxis::Ty, 40, 4);
   auto ty = [&](double t) { return virtualPoseAt(s, t).ty_mm - s.initial_pose.ty_mm; };
   EXPECT_NEAR(ty(0.0), 0.0, 1e-9);
-  EXPECT_NEAR(ty(1.0), 20.0, 1e-9);
-  EXPECT_NEAR(ty(1.999), 40.0 * 1.999 / 2.0, 1e-9);
-  EXPECT_NEAR(ty(2.0), -40.0, 1e-9);
-  EXPECT_NEAR(ty(3.0), -20.0, 1e-9);
+  EXPECT_NEAR(ty(0.5), 20.0, 1e-9);
+  EXPECT_NEAR(ty(1.0), 40.0, 1e-9);
+  EXPECT_NEAR(ty(2.0), 0.0, 1e-9);
+  EXPECT_NEAR(ty(3.0), -40.0, 1e-9);
   EXPECT_NEAR(ty(4.0), 0.0, 1e-9);
-  EXPECT_NEAR(ty(5.0), 20.0, 1e-9);
-  // Constant slope 2A/T between the jumps.
-  for (double t = 2.1; t < 5.9; t += 0.37) EXPECT_NEAR(ty(t + 0.01) - ty(t), 2 * 40.0 / 4.0 * 0.01, 1e-9) << t;
+  EXPECT_NEAR(ty(5.0), 40.0, 1e-9);
+  // Constant speed 4A/T, rising in the first and last quarters, falling in between.
+  for (double t = 0.05; t < 0.95; t += 0.17) EXPECT_NEAR(ty(t + 0.01) - ty(t), 4 * 40.0 / 4.0 * 0.01, 1e-9) << t;
+  for (double t = 1.05; t < 2.95; t += 0.37) EXPECT_NEAR(ty(t + 0.01) - ty(t), -4 * 40.0 / 4.0 * 0.01, 1e-9) << t;
   // Other parameters untouched.
   EXPECT_NEAR(virtualPoseAt(s, 1.0).tx_mm, s.initial_pose.tx_mm, 1e-12);
   EXPECT_NEAR(virtualPoseAt(s, 1.0).rx_deg, s.initial_pose.rx_deg, 1e-12);

@@ -24,9 +24,11 @@ TEST(Tracker, OffOrEmptyMeansWholeImage) {
   RegionTracker tracker;
   TrackingOptions o;
   EXPECT_FALSE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 0.0, kImage).has_value());
-  o.mode = TrackingMode::Off;
   tracker.observe(0.0, {100, 100, 50, 50}, std::nullopt);
   EXPECT_FALSE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 0.04, kImage).has_value());
+  o.mode = TrackingMode::Off;
+  tracker.observe(0.04, {100, 100, 50, 50}, std::nullopt);
+  EXPECT_FALSE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 0.08, kImage).has_value());
 }
 
 TEST(Tracker, ExtrapolatesALinearMotionExactly) {
@@ -98,9 +100,10 @@ TEST(Tracker, ReductionRatioDampsShrinking) {
   o.data_points = 1;
   o.reduction_percent = 10;
   tracker.observe(0, {100, 100, 200, 200}, std::nullopt);
-  ASSERT_TRUE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 1, kImage));
-  tracker.observe(1, {150, 150, 100, 100}, std::nullopt);
-  const auto r = tracker.estimate(o, CameraModel{}, TargetGeometry{}, 2, kImage);
+  tracker.observe(1, {100, 100, 200, 200}, std::nullopt);
+  ASSERT_TRUE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 2, kImage));
+  tracker.observe(2, {150, 150, 100, 100}, std::nullopt);
+  const auto r = tracker.estimate(o, CameraModel{}, TargetGeometry{}, 3, kImage);
   ASSERT_TRUE(r.has_value());
   EXPECT_NEAR(r->width, 180, 1);  // 200 * 0.9, not 100
 }
@@ -113,9 +116,12 @@ TEST(Tracker, MissRestartsFromTheNextDetection) {
   tracker.observeMiss();
   EXPECT_FALSE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 6, kImage).has_value());
   tracker.observe(7, {300, 300, 50, 50}, std::nullopt);
-  const auto r = tracker.estimate(o, CameraModel{}, TargetGeometry{}, 8, kImage);
+  // One detection is not a track yet.
+  EXPECT_FALSE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 8, kImage).has_value());
+  tracker.observe(8, {300, 300, 50, 50}, std::nullopt);
+  const auto r = tracker.estimate(o, CameraModel{}, TargetGeometry{}, 9, kImage);
   ASSERT_TRUE(r.has_value());
-  EXPECT_EQ(r->x, 300);  // one sample: degree 0, no memory of the old track
+  EXPECT_EQ(r->x, 300);  // no memory of the old track
 }
 
 TEST(Tracker, ThreeDParametersProjectTheEstimatedPose) {

@@ -1,0 +1,203 @@
+#include "core/pipeline/engine.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <filesystem>
+
+#include "core/settings/enum_names.h"
+#include "core/source/sources.h"
+#include "core/source/virtual_motion.h"
+#include "core/source/virtual_renderer.h"
+#include "core/tracking/tracker.h"
+
+namespace imagepro {
+namespace {
+
+Settings binaryScene(const Pose& pose) {
+  Settings s;
+  s.virtual_scene.mode = RenderMode::Binary;
+  s.virtual_scene.initial_pose = pose;
+  return s;
+}
+
+Frame render(const Settings& s, const Pose& pose, std::int64_t index = 0) {
+  Frame f;
+  f.index = index;
+  f.timestamp_s = index / s.virtual_scene.frame_rate_hz;
+  f.truth = pose;
+  renderTarget(s.camera, s.target, s.virtual_scene, pose, f.image, static_cast<std::uint64_t>(index));
+  return f;
+}
+
+TEST(Engine, ReconstructsVirtualPoses) {
+  const Pose poses[] = {{0, 0, 0, 0, 0, 800}, {30, -20, 75, 40, -30, 700}, {-45, 10, -170, -60, 20, 1000}};
+  for (const Pose& truth : poses) {
+    const Settings s = binaryScene(truth);
+    Engine engine(s);
+    FrameResult r;
+    engine.process(render(s, truth), r);
+    ASSERT_EQ(r.status, Status::Ok) << statusName(r.status);
+    ASSERT_TRUE(r.pose.has_value());
+    EXPECT_EQ(r.reached, ApplicationLevel::Reconstruction);
+    EXPECT_LT(rotationAngleBetweenDeg(rotationMatrix(truth), rotationMatrix(*r.pose)), 1.0);
+    EXPECT_LT((translation(truth) - translation(*r.pose)).norm(), 0.005 * truth.tz_mm);
+    EXPECT_GT(r.edge_pixels, 0u);
+    EXPECT_GE(r.paths, 3u);  // rim and two spots
+    ASSERT_EQ(r.targets.size(), 1u);
+    EXPECT_FALSE(r.detected_region.empty());
+  }
+}
+
+TEST(Engine, ApplicationLevelStopsAfterTheChosenStage) {
+  const Pose truth{10, 10, 0, 0, 0, 800};
+  Settings s = binaryScene(truth);
+  s.pipeline.level = ApplicationLevel::Edges;
+  Engine engine(s);
+  FrameResult r;
+  engine.process(render(s, truth), r);
+  EXPECT_EQ(r.status, Status::Ok);
+  EXPECT_EQ(r.reached, ApplicationLevel::Edges);
+  EXPECT_GT(r.edge_pixels, 0u);
+  EXPECT_EQ(r.paths, 0u);
+  EXPECT_FALSE(r.pose.has_value());
+  EXPECT_EQ(r.times[Stage::Connectivity], 0.0);
+
+  s.pipeline.level = ApplicationLevel::Ellipse;
+  engine.setSettings(s);
+  engine.process(render(s, truth), r);
+  EXPECT_EQ(r.reached, ApplicationLevel::Ellipse);
+  EXPECT_EQ(r.targets.size(), 1u);
+  EXPECT_FALSE(r.pose.has_value());
+}
+
+TEST(Engine, OptionChangesTakeEffectOnTheNextFrame) {
+  const Pose truth{0, 20, 0, 0, 0, 800};
+  Settings s = binaryScene(truth);
+  s.pipeline.threshold.method = ThresholdMethod::Manual;
+  s.pipeline.threshold.manual_value = 100;
+  Engine engine(s);
+  FrameResult r;
+  const Frame f = render(s, truth);
+  engine.process(f, r);
+  EXPECT_EQ(r.threshold, 100);
+  s.pipeline.threshold.manual_value = 150;
+  s.pipeline.edge_method = EdgeMethod::SobelThinning;
+  s.pipeline.connectivity = ConnectivityMethod::CN0;
+  engine.setSettings(s);
+  engine.process(f, r);
+  EXPECT_EQ(r.threshold, 150);
+  EXPECT_EQ(r.status, Status::Ok) << statusName(r.status);
+}
+
+TEST(Engine, BadFramesGiveNamedErrorsAndTheLoopGoesOn) {
+  Engine engine;
+  FrameResult r;
+  Frame empty;
+  engine.process(empty, r);
+  EXPECT_EQ(r.status, Status::EmptyFrame);
+
+  Frame white;
+  white.image = cv::Mat(480, 640, CV_8UC1, cv::Scalar(255));
+  engine.process(white, r);
+  EXPECT_NE(r.status, Status::Ok);
+  EXPECT_FALSE(r.pose.has_value());
+
+  Frame black;
+  black.image = cv::Mat(480, 640, CV_8UC1, cv::Scalar(0));
+  engine.process(black, r);
+  EXPECT_NE(r.status, Status::Ok);
+
+  Frame clutter;
+  clutter.image = cv::Mat(480, 640, CV_8UC1, cv::Scalar(20));
+  cv::rectangle(clutter.image, cv::Rect(100, 100, 200, 80), cv::Scalar(230), cv::FILLED);
+  cv::circle(clutter.image, {450, 300}, 60, cv::Scalar(230), cv::FILLED);  // a disk without spots
+  engine.process(clutter, r);
+  // Either nothing qualifies, or the best plain ellipse is tried and has no spots.
+  EXPECT_TRUE(r.status == Status::NoTarget || r.status == Status::SpotsNotFound) << r.status;
+  EXPECT_FALSE(r.pose.has_value());
+
+  // And a good frame right after is processed as usual.
+  const Pose truth{0, 0, 0, 0, 0, 800};
+  const Settings s = binaryScene(truth);
+  engine.setSettings(s);
+  engine.process(render(s, truth), r);
+  EXPECT_EQ(r.status, Status::Ok);
+}
+
+TEST(Engine, TwoTargetsAreAmbiguousNeverAnArbitraryPick) {
+  Settings s = binaryScene({});
+  const Pose left{0, 0, 0, -120, 0, 900}, right{0, 0, 0, 120, 0, 900};
+  const Frame a = render(s, left), b = render(s, right);
+  Frame both = a;
+  cv::max(a.image, b.image, both.image);
+  Engine engine(s);
+  FrameResult r;
+  engine.process(both, r);
+  EXPECT_EQ(r.status, Status::AmbiguousTarget);
+  EXPECT_FALSE(r.pose.has_value());
+  EXPECT_EQ(r.targets.size(), 2u);
+}
+
+TEST(Engine, FileSequenceErrorsAreRowsAndTheLoopGoesOn) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / "engine_files";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const Pose truth{0, 15, 30, 0, 0, 800};
+  const Settings s = binaryScene(truth);
+  ASSERT_TRUE(cv::imwrite((dir / "a.png").string(), render(s, truth).image));
+  std::FILE* corrupt = std::fopen((dir / "b.png").string().c_str(), "wb");
+  std::fputs("not a png", corrupt);
+  std::fclose(corrupt);
+  auto source = makeFileSource({(dir / "a.png").string(), (dir / "missing.png").string(), (dir / "b.png").string(),
+                                (dir / "a.png").string()});
+  Engine engine(s);
+  FrameResult r;
+  std::vector<Status> statuses;
+  while (engine.step(*source, r) != Status::EndOfStream) statuses.push_back(r.status);
+  ASSERT_EQ(statuses.size(), 4u);
+  EXPECT_EQ(statuses[0], Status::Ok);
+  EXPECT_EQ(statuses[1], Status::FileNotFound);
+  EXPECT_EQ(statuses[2], Status::FileUnreadable);
+  EXPECT_EQ(statuses[3], Status::Ok);
+}
+
+// Thesis 3.4's goal: the target wholly inside the estimated region in every frame.
+TEST(Engine, TrackedRegionAlwaysHoldsTheTarget) {
+  for (const MotionKind motion : {MotionKind::Sinusoid, MotionKind::SawTooth, MotionKind::Pendulum}) {
+    Settings s;
+    s.virtual_scene.mode = RenderMode::Binary;
+    s.virtual_scene.motion.kind = motion;
+    s.virtual_scene.motion.axis = PoseAxis::Tx;
+    s.virtual_scene.motion.amplitude = 150;
+    s.virtual_scene.motion.period_s = 3;
+    s.pipeline.tracking.mode = TrackingMode::Corners2D;
+    VirtualSource source(s);
+    Engine engine(s);
+    FrameResult r;
+    int tracked = 0, inside = 0;
+    double area = 0;
+    for (int i = 0; i < 150; ++i) {
+      ASSERT_EQ(engine.step(source, r), Status::Ok);
+      ASSERT_EQ(r.status, Status::Ok) << "frame " << i << ": " << statusName(r.status);
+      if (r.search_region.area() < r.image_size.area()) {
+        ++tracked;
+        const cv::Rect2d box = projectedTargetBox(s.camera, s.target, *r.truth);
+        const cv::Rect2d region(r.search_region);
+        if ((box & region).area() >= box.area() - 1e-6)
+          ++inside;
+        else
+          ADD_FAILURE() << "frame " << i << ": target box " << box << " not inside " << region;
+        area += static_cast<double>(r.search_region.area()) / r.image_size.area();
+      }
+    }
+    EXPECT_GE(tracked, 140) << enumName(motion);
+    EXPECT_EQ(inside, tracked) << "motion " << static_cast<int>(motion);
+    EXPECT_LE(area / tracked, 0.10);
+  }
+}
+
+}  // namespace
+}  // namespace imagepro
