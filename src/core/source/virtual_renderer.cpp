@@ -270,6 +270,7 @@ struct Workspace {
   cv::Mat levels;  // CV_8UC1, pixel-centre levels (grey mode)
   cv::Mat grey;    // CV_32FC1, anti-aliased image before conversion
   cv::Mat noise;   // CV_32FC1
+  cv::Mat neighbour_max, neighbour_min;  // CV_8UC1, 3x3 extremes of `levels`
 
   const std::vector<ClutterShape>& clutterFor(const VirtualSceneOptions& scene, int width, int height) {
     const int count = std::max(0, scene.clutter);
@@ -295,7 +296,7 @@ Workspace& workspace() {
 // them when too many overlap there.
 struct ClutterCandidates {
   static constexpr int kMax = 32;
-  std::array<const ClutterShape*, kMax> shapes{};
+  std::array<const ClutterShape*, kMax> shapes;  // the first `count` are set
   int count = 0;
   bool all = false;
 };
@@ -587,18 +588,17 @@ void render(const CameraModel& cam, PlaneScene plane, const VirtualSceneOptions&
   cv::Rect scan = clutter.empty() ? renderer.roi() : cv::Rect(0, 0, width, height);
   if (!scan.empty()) scan = cv::Rect(scan.x - 1, scan.y - 1, scan.width + 2, scan.height + 2) & cv::Rect(0, 0, width, height);
   const int n = std::max(1, scene.supersampling);
-  for (int v = scan.y; v < scan.y + scan.height; ++v) {
-    const auto* above = levels.ptr<std::uint8_t>(std::max(v - 1, 0));
-    const auto* here = levels.ptr<std::uint8_t>(v);
-    const auto* below = levels.ptr<std::uint8_t>(std::min(v + 1, height - 1));
-    auto* grey_row = grey.ptr<float>(v);
-    for (int u = scan.x; u < scan.x + scan.width; ++u) {
-      const int l = std::max(u - 1, 0);
-      const int r = std::min(u + 1, width - 1);
-      const std::uint8_t c = here[u];
-      const bool edge = above[l] != c || above[u] != c || above[r] != c || here[l] != c || here[r] != c ||
-                        below[l] != c || below[u] != c || below[r] != c;
-      if (edge) grey_row[u] = renderer.pixelAverage(u, v, n);
+  if (!scan.empty()) {
+    // A pixel is on an edge when its 3x3 neighbourhood is not constant: max != min.
+    const cv::Mat area = levels(scan);
+    cv::dilate(area, ws.neighbour_max, cv::Mat());
+    cv::erode(area, ws.neighbour_min, cv::Mat());
+    for (int y = 0; y < scan.height; ++y) {
+      const auto* hi = ws.neighbour_max.ptr<std::uint8_t>(y);
+      const auto* lo = ws.neighbour_min.ptr<std::uint8_t>(y);
+      auto* grey_row = grey.ptr<float>(scan.y + y) + scan.x;
+      for (int x = 0; x < scan.width; ++x)
+        if (hi[x] != lo[x]) grey_row[x] = renderer.pixelAverage(scan.x + x, scan.y + y, n);
     }
   }
 
