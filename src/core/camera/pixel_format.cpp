@@ -142,9 +142,17 @@ Status bufferToGrey(const BufferLayout& layout, const std::uint8_t* data, std::s
       grey = cv::Mat(h, w, CV_8UC1, pixels, step);
       return Status::Ok;
     case PixelFormat::Yuyv:
-    case PixelFormat::Uyvy:
-      cv::extractChannel(cv::Mat(h, w, CV_8UC2, pixels, step), scratch, layout.format == PixelFormat::Yuyv ? 0 : 1);
+    case PixelFormat::Uyvy: {
+      // Every second byte; a plain loop the compiler vectorises beats cv::extractChannel.
+      scratch.create(h, w, CV_8UC1);
+      const std::size_t first = layout.format == PixelFormat::Yuyv ? 0 : 1;
+      for (int y = 0; y < h; ++y) {
+        const std::uint8_t* src = data + static_cast<std::size_t>(y) * step + first;
+        std::uint8_t* dst = scratch.ptr<std::uint8_t>(y);
+        for (int x = 0; x < w; ++x) dst[x] = src[2 * x];
+      }
       break;
+    }
     case PixelFormat::Rgb24:
     case PixelFormat::Bgr24:
       cv::cvtColor(cv::Mat(h, w, CV_8UC3, pixels, step), scratch,
