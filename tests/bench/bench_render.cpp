@@ -1,4 +1,4 @@
-// Virtual perspective projection speed (thesis 2.2, 5.5: "100 ideal frames per second").
+// Virtual perspective projection speed (thesis 2.2, 6.1: "100 ideal frames ... per second").
 //   build/tests/bench/bench_render --benchmark_min_time=0.5
 // Frames/s is reported as items_per_second. Poses: "far" is the default scene (target
 // 800 mm ahead, 100 px disk on a 130 px card), "near" fills most of the 640x480 image.
