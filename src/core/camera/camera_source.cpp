@@ -311,6 +311,9 @@ void CameraSource::noteTimestamp(double t) {
 Status CameraSource::next(Frame& out) {
   // The frame loop's thread alone opens and closes the device, so it reads fd_,
   // streaming_ and the buffers without the lock; it takes the lock to change them.
+  // The last image may be a view of a buffer about to go back to the driver (or
+  // unmapped after a failure): never leave it in `out`.
+  out.image.release();
   if (!streaming_) {
     if (stopped_) return Status::EndOfStream;
     if (failure_ != Status::Ok) return failure_;

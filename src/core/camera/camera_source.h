@@ -87,7 +87,7 @@ class CameraSource final : public FrameSource {
   // in seconds after the first frame. Statuses: CameraTimeout (streaming goes on),
   // EmptyFrame for a buffer the driver flagged or a frame that cannot be decoded
   // (streaming goes on), CameraDisconnected (the device is closed), or the start()
-  // error while the source is not streaming.
+  // error while the source is not streaming. Frame::image is empty unless Ok.
   Status next(Frame& out) override;
   std::string lastError() const override;
   // 0: the camera paces itself (next() waits for the driver); see format() and

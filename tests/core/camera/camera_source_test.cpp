@@ -313,6 +313,7 @@ TEST_F(CameraFixture, TimeoutThenFramesAgain) {
   device.stalled = true;
   device.wait_timeouts.clear();
   EXPECT_EQ(camera.next(frame), Status::CameraTimeout);
+  EXPECT_TRUE(frame.image.empty());  // no view of a buffer the driver has again
   EXPECT_NE(camera.lastError().find("no frame within 500 ms"), std::string::npos) << camera.lastError();
   ASSERT_FALSE(device.wait_timeouts.empty());
   EXPECT_TRUE(camera.streaming());
@@ -335,6 +336,7 @@ TEST_F(CameraFixture, DisconnectMidStreamAndReconnect) {
     for (int i = 0; i < 5; ++i) ASSERT_EQ(camera.next(frame), Status::Ok);
     const double last_time = frame.timestamp_s;
     EXPECT_EQ(camera.next(frame), Status::CameraDisconnected);
+    EXPECT_TRUE(frame.image.empty());  // its buffers are unmapped
     EXPECT_NE(camera.lastError().find("/dev/video-fake"), std::string::npos);
     EXPECT_NE(camera.lastError().find("restart"), std::string::npos);
     EXPECT_FALSE(camera.streaming());
