@@ -51,6 +51,7 @@ void RegionTracker::reset() {
   active_degree_ = 0;
   last_r_ = 1.0;
   last_region_.reset();
+  last_box_.reset();
 }
 
 const RegionTracker::Sample& RegionTracker::fromNewest(std::size_t k) const {
@@ -111,7 +112,9 @@ std::optional<cv::Rect> RegionTracker::estimate(const TrackingOptions& o, const 
 
   std::array<double, 6> est{};
   last_r_ = fit(n, degree, est);
-  if (last_r_ < o.min_r && n > 2) {
+  // A constant (degree 0) fit explains none of the variance, so its r is always 0:
+  // the rule only applies to fits of degree 1 and up.
+  if (degree >= 1 && last_r_ < o.min_r && n > 2) {
     // The motion changed: degree 1 over the last two samples, then grow back (3.3.1).
     active_points_ = 2;
     active_degree_ = 1;
@@ -128,6 +131,7 @@ std::optional<cv::Rect> RegionTracker::estimate(const TrackingOptions& o, const 
     box = {est[0], est[1], est[2] - est[0], est[3] - est[1]};
   }
   if (!(box.width > 0 && box.height > 0)) return std::nullopt;
+  last_box_ = box;
 
   // Speed of the box centre over the last two detections, pixels per frame.
   double speed = 0.0;

@@ -47,6 +47,8 @@ class RegionTracker {
   int activePoints() const { return active_points_; }
   int activeDegree() const { return active_degree_; }
   double lastCorrelation() const { return last_r_; }
+  // The extrapolated bounding box of the last estimate, before enlargement (thesis x~_{N+1}).
+  const std::optional<cv::Rect2d>& lastPredictedBox() const { return last_box_; }
   std::size_t samples() const { return count_; }
 
  private:
@@ -66,6 +68,7 @@ class RegionTracker {
   int active_degree_ = 0;
   double last_r_ = 1.0;
   std::optional<cv::Rect2d> last_region_;
+  std::optional<cv::Rect2d> last_box_;
 };
 
 }  // namespace imagepro
