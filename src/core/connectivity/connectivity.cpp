@@ -56,9 +56,9 @@ void startPaths(const EdgeList& edges, Paths& out) {
   out.pixels.reserve(edges.size());
 }
 
-// Checks the list against the image and writes each pixel's list index into the
-// index image. On failure the entries already written are reset, keeping the
-// "all -1 between calls" invariant.
+// Checks the list against the image, writes each pixel's list index into the index
+// image and its position there into ws.offsets. On failure the entries already
+// written are reset, keeping the "all -1 between calls" invariant.
 Status indexEdges(const EdgeList& edges, cv::Size imageSize, ConnectivityWorkspace& ws) {
   const int rows = imageSize.height + 2;
   const int cols = imageSize.width + 3;  // a one-pixel frame, plus a spare column for freshNeighbours
@@ -68,22 +68,24 @@ Status indexEdges(const EdgeList& edges, cv::Size imageSize, ConnectivityWorkspa
   }
   std::int32_t* index = ws.index.ptr<std::int32_t>();
   const std::size_t stride = static_cast<std::size_t>(cols);
+  ws.offsets.resize(edges.size());
   for (std::size_t i = 0; i < edges.size(); ++i) {
     const EdgePixel& p = edges[i];
     const bool inside = p.x >= 0 && p.y >= 0 && p.x < imageSize.width && p.y < imageSize.height;
-    if (!inside || index[indexOffset(p, stride)] != kNoPixel) {
-      for (std::size_t j = 0; j < i; ++j) index[indexOffset(edges[j], stride)] = kNoPixel;
+    const std::size_t offset = inside ? indexOffset(p, stride) : 0;
+    if (!inside || index[offset] != kNoPixel) {
+      for (std::size_t j = 0; j < i; ++j) index[ws.offsets[j]] = kNoPixel;
       return Status::InvalidEdgeList;
     }
-    index[indexOffset(p, stride)] = static_cast<std::int32_t>(i);
+    index[offset] = static_cast<std::int32_t>(i);
+    ws.offsets[i] = static_cast<std::uint32_t>(offset);
   }
   return Status::Ok;
 }
 
-void clearIndex(const EdgeList& edges, ConnectivityWorkspace& ws) {
+void clearIndex(ConnectivityWorkspace& ws) {
   std::int32_t* index = ws.index.ptr<std::int32_t>();
-  const std::size_t stride = static_cast<std::size_t>(ws.index.cols);
-  for (const EdgePixel& p : edges) index[indexOffset(p, stride)] = kNoPixel;
+  for (const std::uint32_t offset : ws.offsets) index[offset] = kNoPixel;
 }
 
 Status checkInput(const EdgeList& edges, cv::Size imageSize, Paths& out, ConnectivityWorkspace& ws) {
@@ -98,7 +100,7 @@ Status checkInput(const EdgeList& edges, cv::Size imageSize, Paths& out, Connect
 Status connectCN0(const EdgeList& edges, cv::Size imageSize, Paths& out, ConnectivityWorkspace& ws) {
   // The index image only validates the list here; the grouping itself does not use it.
   if (const Status s = checkInput(edges, imageSize, out, ws); !ok(s)) return s;
-  clearIndex(edges, ws);
+  clearIndex(ws);
   startPaths(edges, out);
 
   auto& unassigned = ws.unassigned;
@@ -147,32 +149,34 @@ Status connectCN1(const EdgeList& edges, cv::Size imageSize, Paths& out, Connect
   // makes them readable at the image border.
   const std::array<std::ptrdiff_t, 8> neighbourOffsets = {-s - 1, -s, -s + 1, -1, 1, s - 1, s, s + 1};
 
-  // The reordered list is written in place, no allocation once it has grown.
+  // The reordered list, first as input indices; no allocation once it has grown.
   const std::size_t n = edges.size();
-  out.pixels.resize(n);
-  EdgePixel* list = out.pixels.data();
-  const EdgePixel* input = edges.data();
+  const std::uint32_t* offsets = ws.offsets.data();
+  ws.order.resize(n);
+  std::uint32_t* order = ws.order.data();
   std::size_t tail = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    std::int32_t* seedEntry = index + indexOffset(input[i], stride);
+    std::int32_t* seedEntry = index + offsets[i];
     if (*seedEntry == kAssigned) continue;
     *seedEntry = kAssigned;
-    list[tail++] = input[i];
+    order[tail++] = static_cast<std::uint32_t>(i);
     // The path grows at the list's end while `head` walks it.
     for (std::size_t head = out.starts.back(); head < tail; ++head) {
-      std::int32_t* centre = index + indexOffset(list[head], stride);
+      std::int32_t* centre = index + offsets[order[head]];
       // On a contour this is usually one neighbour, so the loop below rarely repeats.
       std::uint32_t fresh = freshNeighbours(centre, neighbourOffsets);
       while (fresh != 0) {
         std::int32_t* entry = centre + neighbourOffsets[static_cast<std::size_t>(std::countr_zero(fresh))];
         fresh &= fresh - 1;
-        list[tail++] = input[*entry];
+        order[tail++] = static_cast<std::uint32_t>(*entry);
         *entry = kAssigned;
       }
     }
     out.starts.push_back(static_cast<std::uint32_t>(tail));
   }
-  clearIndex(edges, ws);
+  out.pixels.resize(n);
+  for (std::size_t j = 0; j < n; ++j) out.pixels[j] = edges[order[j]];
+  clearIndex(ws);
   return Status::Ok;
 }
 

@@ -32,6 +32,8 @@ struct ConnectivityWorkspace {
   // (x, y) is at (y + 1, x + 1), -1 elsewhere (a frame, and a spare last column). Every entry is -1 between calls, so a
   // frame only touches the entries of its own edge pixels.
   cv::Mat index;
+  std::vector<std::uint32_t> offsets;     // each input pixel's position in `index`
+  std::vector<std::uint32_t> order;       // CN1: input indices in path order
   std::vector<std::uint32_t> unassigned;  // CN0: input indices not yet in a path, in input order
 };
 
