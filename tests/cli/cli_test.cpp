@@ -1,0 +1,159 @@
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/common/atomic_file.h"
+
+namespace imagepro {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+// Runs the CLI with `args`, capturing stdout and stderr through files.
+CliRun cli(const std::string& args) {
+  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / "cli";
+  fs::create_directories(dir);
+  const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
+  const std::string command = std::string(IMAGEPRO_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
+  const int status = std::system(command.c_str());
+  CliRun r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::string e;
+  readWholeFile(out, r.out, e);
+  readWholeFile(err, r.err, e);
+  return r;
+}
+
+fs::path freshDir(const char* name) {
+  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+TEST(Cli, OverviewListsTheCommands) {
+  const CliRun r = cli("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* c : {"reconstruct", "render", "threshold", "edges", "bench", "settings", "track-study"})
+    EXPECT_NE(r.out.find(c), std::string::npos) << c;
+}
+
+TEST(Cli, EveryCommandHasHelp) {
+  const CliRun overview = cli("--help");
+  for (const std::string& line : lines(overview.out)) {
+    if (line.rfind("  ", 0) != 0) continue;
+    const std::string name = line.substr(2, line.find(' ', 2) - 2);
+    const CliRun r = cli(name + " --help");
+    EXPECT_EQ(r.exit_code, 0) << name;
+    EXPECT_NE(r.out.find("usage: imagepro-cli " + name), std::string::npos) << name;
+  }
+}
+
+TEST(Cli, UsageErrorsAreOneLineAndExitTwo) {
+  CliRun r = cli("frobnicate");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("unknown command"), std::string::npos);
+  r = cli("reconstruct --bogus 1 x.png");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--bogus"), std::string::npos);
+  r = cli("reconstruct");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(lines(r.err).size(), 1u);
+}
+
+TEST(Cli, MalformedSettingsNameTheKey) {
+  const fs::path dir = freshDir("cli_settings");
+  std::string e;
+  ASSERT_TRUE(writeFileAtomically((dir / "bad.json").string(), R"({"pipeline": {"threshold": {"method": "otsu"}}})", e));
+  const CliRun r = cli("reconstruct --virtual --frames 1 --config " + (dir / "bad.json").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("pipeline.threshold.method"), std::string::npos) << r.err;
+  EXPECT_EQ(cli("settings --config " + (dir / "missing.json").string()).exit_code, 1);
+}
+
+TEST(Cli, ReconstructWritesARowPerFrameEvenForBadFiles) {
+  const fs::path dir = freshDir("cli_reconstruct");
+  CliRun r = cli("render --out " + dir.string() + " --frames 2 --mode binary");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string e;
+  ASSERT_TRUE(writeFileAtomically((dir / "corrupt.png").string(), "garbage", e));
+  r = cli("reconstruct " + (dir / "frame_00000.png").string() + " " + (dir / "missing.png").string() + " " +
+          (dir / "corrupt.png").string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 4u) << r.out;
+  EXPECT_EQ(rows[0], "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm");
+  EXPECT_NE(rows[1].find(",ok,"), std::string::npos) << rows[1];
+  EXPECT_NE(rows[2].find(",FileNotFound,,,,,,"), std::string::npos) << rows[2];
+  EXPECT_NE(rows[3].find(",FileUnreadable,,,,,,"), std::string::npos) << rows[3];
+}
+
+TEST(Cli, ReconstructJson) {
+  const CliRun r = cli("reconstruct --virtual --frames 2 --format json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.front(), '[');
+  EXPECT_NE(r.out.find("\"Tz_mm\""), std::string::npos);
+}
+
+TEST(Cli, DataOutSurvivesAKill) {
+  const fs::path dir = freshDir("cli_kill");
+  const std::string data = (dir / "dataout.csv").string();
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int devnull = open("/dev/null", O_WRONLY);
+    dup2(devnull, 1);
+    dup2(devnull, 2);
+    execl(IMAGEPRO_CLI, IMAGEPRO_CLI, "reconstruct", "--virtual", "--frames", "1000000", "--data-out", data.c_str(),
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Let it write for a while, then kill it without warning.
+  for (int i = 0; i < 100 && (!fs::exists(data) || fs::file_size(data) < 2000); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  std::string text, e;
+  ASSERT_TRUE(readWholeFile(data, text, e)) << e;
+  const auto rows = lines(text);
+  ASSERT_GE(rows.size(), 3u);
+  EXPECT_EQ(rows[0].rfind("frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,timestamp_s", 0), 0u);
+  // Every complete row is whole: the same number of columns as the header.
+  const auto columns = [](const std::string& l) { return std::count(l.begin(), l.end(), ','); };
+  const bool last_complete = !text.empty() && text.back() == '\n';
+  for (std::size_t i = 1; i + (last_complete ? 0 : 1) < rows.size(); ++i) EXPECT_EQ(columns(rows[i]), columns(rows[0])) << i;
+
+  // Asked to write to the same file again, it refuses rather than overwrite.
+  const CliRun again = cli("reconstruct --virtual --frames 1 --data-out " + data);
+  EXPECT_EQ(again.exit_code, 1);
+  std::string after;
+  ASSERT_TRUE(readWholeFile(data, after, e));
+  EXPECT_EQ(after, text);
+}
+
+}  // namespace
+}  // namespace imagepro
