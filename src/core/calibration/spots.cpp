@@ -10,8 +10,7 @@
 namespace imagepro {
 namespace {
 
-constexpr int kWeightRingPx = 2;  // the rim's blur and anti-aliasing reach this far out
-constexpr int kWhiteRingPx = 3;   // the white level is read this far out
+constexpr int kWeightRingPx = kSpotClearancePx - 1;  // the rim's blur and anti-aliasing reach this far out
 
 bool nearComponent(const cv::Mat& labels, int label, int x, int y) {
   const int x0 = std::max(x - kWeightRingPx, 0), x1 = std::min(x + kWeightRingPx, labels.cols - 1);
@@ -97,16 +96,12 @@ Status findPatternSpots(const cv::Mat& grey, const ThresholdOptions& threshold, 
     if (area < kMinSpotAreaPx || area > maxArea) continue;
     if (box.x == 0 || box.y == 0 || box.x + box.width == grey.cols || box.y + box.height == grey.rows) continue;
 
-    double white = 0.0;
-    const cv::Rect whiteBox(box.x - kWhiteRingPx, box.y - kWhiteRingPx, box.width + 2 * kWhiteRingPx,
-                            box.height + 2 * kWhiteRingPx);
-    if (!whiteLevel(grey, ws.labels, whiteBox, ws.border, white)) continue;
-
+    const cv::Rect clearBox(box.x - kSpotClearancePx, box.y - kSpotClearancePx, box.width + 2 * kSpotClearancePx,
+                            box.height + 2 * kSpotClearancePx);
     // Anything else dark this close would lend its blurred rim to the weights.
-    if (touchesOtherComponent(ws.labels, label,
-                              cv::Rect(box.x - kWeightRingPx - 1, box.y - kWeightRingPx - 1,
-                                       box.width + 2 * kWeightRingPx + 2, box.height + 2 * kWeightRingPx + 2)))
-      continue;
+    if (touchesOtherComponent(ws.labels, label, clearBox)) continue;
+    double white = 0.0;
+    if (!whiteLevel(grey, ws.labels, clearBox, ws.border, white)) continue;
     const cv::Rect weightBox =
         cv::Rect(box.x - kWeightRingPx, box.y - kWeightRingPx, box.width + 2 * kWeightRingPx,
                  box.height + 2 * kWeightRingPx) &

@@ -6,7 +6,7 @@
 // grown by two pixels, so the anti-aliased and blurred rim contributes in proportion to
 // how much of the spot it covers and the threshold does not move the centre.
 // The white level is the median grey of the border of the component's box grown by
-// three pixels. Pixels of other components are never counted.
+// kSpotClearancePx. Pixels of other components are never counted.
 //
 // The threshold is the pipeline's automatic one (thesis 2.3) moved to halfway between the
 // mean grey levels of the two classes it separates: the minimum-error threshold settles
@@ -17,8 +17,8 @@
 // Only plausible spots are kept: at least kMinSpotAreaPx pixels, at most 1% of the image
 // (the card, the background beyond the sheet and other large dark regions are not
 // spots), not touching the image border (a cut spot has a wrong centre), and with nothing
-// else dark within a pixel of the grown box (its blurred rim would pull the centre: a spot
-// at the sheet's edge, a spot next to the card or a blemish). The matching
+// else dark within kSpotClearancePx of its box (its blurred rim would pull the centre: a
+// spot at the sheet's edge, a spot next to the card or a blemish). The matching
 // (matching.h) then asks each one to have about the area the pattern's geometry predicts.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
@@ -32,6 +32,9 @@
 namespace imagepro {
 
 inline constexpr int kMinSpotAreaPx = 3;
+// Nothing else dark may lie within this many pixels of a spot's box (the two-pixel weighing
+// ring and one more); the white level is read on the border of the box grown by as much.
+inline constexpr int kSpotClearancePx = 3;
 
 struct ObservedSpot {
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // image px as seen (distorted)
