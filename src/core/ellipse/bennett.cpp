@@ -9,6 +9,7 @@ namespace imagepro {
 namespace {
 
 constexpr int kMargin = 2;  // accumulator cells around the path's bounding box
+constexpr int kSnap = 2;    // cells
 // A ring is point-symmetric about the peak while sum|A(q) - A(q')| / sum(A(q) + A(q'))
 // over its mirrored cells stays below this (exact symmetry gives 0; subsampling and
 // float rounding give a few per cent).
@@ -125,58 +126,48 @@ Status bennettAccumulate(std::span<const EdgePixel> path, int max_points, Bennet
   out.score = acc[best];
   if (!(out.score > 0.0f)) return Status::NoTarget;
   out.peak_fraction = out.score / all_pairs;
-  const int border = std::min({px, py, box.w - 1 - px, box.h - 1 - py});
-  out.border_distance_px = border;
+  const int border = std::min({px, py, box.w - 1 - px, box.h - 1 - py});  // for the rings of the quality
 
-  // Centre of symmetry: the peak cell or one of its corners, whichever makes the
-  // innermost rings most symmetric (a shape centred on a pixel corner splits its peak).
+  // Centre of symmetry: the box's centre when the peak is within kSnap cells of it (the
+  // rays' rounding can move the peak of a symmetric path by a cell), else the peak.
+  // Both are on the cell grid or halfway between cells: mirror of cell q = 2c - q.
+  int twice_cx = 2 * px, twice_cy = 2 * py;  // 2c in cell units
+  if (std::abs(2 * px - (box.w - 1)) <= 2 * kSnap && std::abs(2 * py - (box.h - 1)) <= 2 * kSnap) {
+    twice_cx = box.w - 1;
+    twice_cy = box.h - 1;
+  }
+  const int best_sx = twice_cx - 2 * px, best_sy = twice_cy - 2 * py;
   auto at = [&](int x, int y) -> double {
     return box.contains(x, y) ? acc[static_cast<std::size_t>(y) * box.w + x] : 0.0;
   };
-  int best_sx = 0, best_sy = 0;
-  double best_asym = std::numeric_limits<double>::infinity();
-  for (int sy = -1; sy <= 1; ++sy) {
-    for (int sx = -1; sx <= 1; ++sx) {
-      double diff = 0.0, sum = 0.0;
-      for (int dy = -3; dy <= 3; ++dy)
-        for (int dx = -3; dx <= 3; ++dx) {
-          const double u = at(px + dx, py + dy), v = at(px + sx - dx, py + sy - dy);
-          diff += std::abs(u - v);
-          sum += u + v;
-        }
-      const double asym = sum > 0.0 ? diff / sum : 0.0;
-      if (asym < best_asym - 1e-12) {
-        best_asym = asym;
-        best_sx = sx;
-        best_sy = sy;
-      }
-    }
-  }
-  out.cx = box.x0 + px + 0.5 * best_sx;
-  out.cy = box.y0 + py + 0.5 * best_sy;
+  out.cx = box.x0 + 0.5 * twice_cx;
+  out.cy = box.y0 + 0.5 * twice_cy;
 
-  // Rings about the peak, out to the nearest border: mean score (quality) and
-  // point-symmetry about the centre of symmetry.
+  // Rings about the peak out to the farthest border: mean score (quality) and point
+  // symmetry about the centre of symmetry, cells outside the box counting as empty. A
+  // point-symmetric path has a box symmetric about its centre, so the rings stay
+  // symmetric to the end; a peak off the box's centre loses its symmetry at the nearest
+  // border, where the mirrored cells leave the box (thesis rule 1).
   // Per ring r: [0] sum of scores, [1] cells, [2] sum |A(q) - A(q')|, [3] sum A(q) + A(q').
-  const std::size_t rings = static_cast<std::size_t>(border) + 1;
+  const int reach = std::max({px, py, box.w - 1 - px, box.h - 1 - py});
+  const std::size_t rings = static_cast<std::size_t>(reach) + 1;
+  out.border_distance_px = reach;
   ws.rings.assign(4 * rings, 0.0);
   double* ring_sum = ws.rings.data();
   double* ring_count = ring_sum + rings;
   double* ring_diff = ring_count + rings;
   double* ring_both = ring_diff + rings;
-  for (int dy = -border; dy <= border; ++dy) {
-    for (int dx = -border; dx <= border; ++dx) {
+  for (int dy = -reach; dy <= reach; ++dy) {
+    for (int dx = -reach; dx <= reach; ++dx) {
       const int r = static_cast<int>(std::lround(std::sqrt(static_cast<double>(dx * dx + dy * dy))));
-      if (r > border) continue;
-      const double u = at(px + dx, py + dy);
-      ring_sum[r] += u;
-      ring_count[r] += 1.0;
-      const int mxq = px + best_sx - dx, myq = py + best_sy - dy;
-      if (box.contains(mxq, myq)) {
-        const double v = at(mxq, myq);
-        ring_diff[r] += std::abs(u - v);
-        ring_both[r] += u + v;
+      if (r > reach) continue;
+      const double u = at(px + dx, py + dy), v = at(px + best_sx - dx, py + best_sy - dy);
+      if (r <= border) {
+        ring_sum[r] += u;
+        ring_count[r] += 1.0;
       }
+      ring_diff[r] += std::abs(u - v);
+      ring_both[r] += u + v;
     }
   }
   const double half = 0.5 * out.score;
@@ -191,8 +182,8 @@ Status bennettAccumulate(std::span<const EdgePixel> path, int max_points, Bennet
     prev = mean;
   }
   out.quality = out.score / std::sqrt(std::max(out.half_radius_px, 0.25));
-  out.symmetry_px = border + 1;  // symmetric out to the border
-  for (int r = 1; r <= border; ++r) {
+  out.symmetry_px = reach + 1;  // symmetric out to the farthest border
+  for (int r = 1; r <= reach; ++r) {
     if (ring_both[r] > 0.0 && ring_diff[r] / ring_both[r] > kAsymmetryLimit) {
       out.symmetry_px = r;
       break;

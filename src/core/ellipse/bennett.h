@@ -18,8 +18,12 @@
 // Two departures from the thesis, both for speed, neither changing the peak:
 //  * the accumulator covers the path's bounding box (plus a margin) instead of the whole
 //    image. The centre of a closed path lies inside its box, and the box of a
-//    point-symmetric path is symmetric about its centre, so symmetry reaching the box's
-//    border takes the place of "symmetry reaching the closest image border";
+//    point-symmetric path is symmetric about its centre, so rule 1 ("the symmetry must
+//    not vanish closer than the closest image border") becomes: the accumulator is
+//    point-symmetric about the peak over the whole box, cells outside it counting as
+//    empty. A peak within two cells of the box's centre is taken at the centre (the
+//    rays' rounding moves the peak of a symmetric path by a cell); a peak elsewhere
+//    loses its symmetry where the mirrored cells leave the box;
 //  * a path longer than max_points is subsampled evenly to max_points pixels and each
 //    vote weighs (n (n-1)) / (m (m-1)), so scores estimate the all-pairs score.
 #include <cstddef>
@@ -38,7 +42,7 @@ struct BennettResult {
   double quality = 0.0;          // score / sqrt(half-score radius)
   double half_radius_px = 0.0;   // radius of the circle with mean score = score / 2
   double symmetry_px = 0.0;      // radius at which point symmetry about the peak vanishes
-  double border_distance_px = 0.0;  // from the peak to the nearest accumulator border
+  double border_distance_px = 0.0;  // from the peak to the farthest accumulator border
   double cx = 0.0, cy = 0.0;     // centre of symmetry of the peak (pixels)
   double peak_fraction = 0.0;    // score / all pairs of the path's pixels with a gradient
   std::size_t pairs = 0;         // point pairs that voted

@@ -1,6 +1,7 @@
 #include "core/ellipse/detect.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace imagepro {
@@ -18,6 +19,8 @@ constexpr std::size_t kMinSpotPixels = 4;
 // A spot's path (the white pixels around it) has an RMS radius within this factor of
 // the spot's expected radius r0 / R * sqrt(a b).
 constexpr double kSpotSizeFactor = 2.5;
+// The consensus fit scores its candidates on at most this many pixels of the path.
+constexpr std::size_t kConsensusScorePoints = 128;
 
 void summarise(std::span<const EdgePixel> path, PathSummary& s) {
   int minx = path[0].x, maxx = minx, miny = path[0].y, maxy = miny;
@@ -201,9 +204,14 @@ Status fitEllipseRobust(const EllipseOptions& o, std::span<const EdgePixel> path
   ws.rng.seed(static_cast<std::mt19937::result_type>(n));  // reproducible per path
   std::uniform_int_distribution<std::size_t> pick(0, n - 1);
   const double inlier_px = o.trace_inlier_px;
+  // Candidates are scored on an evenly spread subset of the path.
+  const std::size_t stride = std::max<std::size_t>(1, n / kConsensusScorePoints);
+  const std::size_t scored = (n + stride - 1) / stride;
   std::size_t best_count = 0;
+  int best_covered = 0;
+  double needed = o.robust_iterations;  // shrinks as the best inlier share grows
   EllipseFit best, trial;
-  for (int it = 0; it < o.robust_iterations; ++it) {
+  for (int it = 0; it < o.robust_iterations && it < needed; ++it) {
     std::array<std::size_t, 6> idx;
     for (std::size_t k = 0; k < idx.size(); ++k) {
       bool fresh;
@@ -215,13 +223,34 @@ Status fitEllipseRobust(const EllipseOptions& o, std::span<const EdgePixel> path
     ConicMoments m;
     for (std::size_t k : idx) m.add(path[k].x, path[k].y);
     if (!ok(fitEllipse(m, trial))) continue;
+    // Score: how much of the candidate ellipse the path traces (an occluder's long
+    // straight edges gather many inliers on a needle-thin ellipse but trace little of
+    // it), then the inliers.
     std::size_t count = 0;
-    for (const EdgePixel& p : path) count += std::abs(sampsonDistance(trial, p.x, p.y)) <= inlier_px;
-    if (count > best_count) {
+    std::uint64_t bins = 0;
+    const double th = trial.ellipse.angle_deg * kPi / 180.0;
+    const double cs = std::cos(th), sn = std::sin(th);
+    for (std::size_t k = 0; k < n; k += stride) {
+      const double x = path[k].x, y = path[k].y;
+      if (std::abs(sampsonDistance(trial, x, y)) > inlier_px) continue;
+      ++count;
+      const double dx = x - trial.ellipse.cx, dy = y - trial.ellipse.cy;
+      const double t = std::atan2((-dx * sn + dy * cs) / trial.ellipse.b, (dx * cs + dy * sn) / trial.ellipse.a);
+      bins |= std::uint64_t{1} << std::min(63, static_cast<int>((t + kPi) / (2.0 * kPi) * 64.0));
+    }
+    const int covered = std::popcount(bins);
+    if (covered > best_covered || (covered == best_covered && count > best_count)) {
+      best_covered = covered;
       best_count = count;
       best = trial;
+      // Iterations for a 99 % chance of one all-inlier sample at this inlier share.
+      const double clean = std::pow(static_cast<double>(count) / scored, 6.0);
+      if (clean >= 1.0) break;
+      if (clean > 0.0) needed = std::log(0.01) / std::log1p(-clean);
     }
   }
+  best_count = 0;
+  for (const EdgePixel& p : path) best_count += std::abs(sampsonDistance(best, p.x, p.y)) <= inlier_px;
   if (best_count < 6) return Status::NotAnEllipse;
   // Refit on the inliers, twice: the consensus ellipse is only as good as six points.
   for (int round = 0; round < 2; ++round) {

@@ -42,6 +42,9 @@ inline void accumulate(std::array<double, 15>& s, double x, double y) {
 // times better (algebraic residual) than the best ellipse are reported as NotAnEllipse.
 // Digitised ellipse arcs stay well below this ratio (tests: partial arcs).
 constexpr double kNonEllipseResidualRatio = 4.0;
+// (4ac - b^2) / (a^2 + b^2 + c^2) of the quadratic part in the normalised frame; about
+// 4 / aspect^2 for a thin ellipse.
+constexpr double kMinEllipseCondition = 1e-4;
 
 }  // namespace
 
@@ -154,13 +157,17 @@ Status fitEllipse(const ConicMoments& mom, EllipseFit& fit) {
   }
   if (best < 0) return Status::NotAnEllipse;
 
-  // Hyperbola or parabola data: the unconstrained optimum is not an ellipse and explains
-  // the points far better than the best ellipse.
+  // Hyperbola or parabola data: the unconstrained optimum is not an ellipse (a parabola
+  // within rounding) and either explains the points far better than the best ellipse or
+  // leaves only a degenerate, needle-thin best ellipse (aspect ratio beyond ~200).
   {
     const Eigen::Vector3d v = sym.eigenvectors().col(0);
+    const bool free_is_ellipse = 4.0 * v(0) * v(2) - v(1) * v(1) > 1e-6 * v.squaredNorm();
     const double ellipse_residual = a1.dot(M * a1) / a1.squaredNorm();
-    if (4.0 * v(0) * v(2) - v(1) * v(1) <= 0.0 &&
-        ellipse_residual > kNonEllipseResidualRatio * std::max(sym_values(0), 0.0) + 1e-13 * trace)
+    const double ellipse_condition = 1.0 / a1.squaredNorm();  // (4ac - b^2) / |a1|^2
+    if (!free_is_ellipse &&
+        (ellipse_residual > kNonEllipseResidualRatio * std::max(sym_values(0), 0.0) + 1e-13 * trace ||
+         ellipse_condition < kMinEllipseCondition))
       return Status::NotAnEllipse;
   }
 

@@ -1,0 +1,232 @@
+// Target selection on rendered frames: the white disk with two spots among distractors,
+// two targets, occluders and the image border.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "core/ellipse/detect.h"
+#include "core/source/virtual_renderer.h"
+#include "scenes.h"
+
+namespace imagepro {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+class TargetScene : public ::testing::Test {
+ protected:
+  TargetScene() {
+    scene.noise_sigma = 3.0;
+    scene.blur_sigma_px = 0.7;
+  }
+  // Threshold at mid-grey, so that the binary boundary is the disk's true boundary.
+  Status detect(const cv::Mat& grey) {
+    const Status st = pipe.run(grey, (scene.white_level + scene.black_level) / 2);
+    if (!ok(st)) return st;
+    return detectTarget(options, target, pipe.paths, grey.size(), ws, found);
+  }
+  cv::Mat render(const Pose& pose) {
+    cv::Mat img;
+    renderTarget(camera, target, scene, pose, img, 1);
+    return img;
+  }
+  void expectEllipseOfPose(const TargetDetection& d, const Pose& pose, double tol_px = 0.6) {
+    const Ellipse truth = test::diskImage(camera, target, pose);
+    EXPECT_NEAR(d.ellipse.cx, truth.cx, tol_px);
+    EXPECT_NEAR(d.ellipse.cy, truth.cy, tol_px);
+    // The edge pixels are the white pixels just inside the disk's boundary.
+    EXPECT_NEAR(d.ellipse.a, truth.a - 0.5, tol_px);
+    EXPECT_NEAR(d.ellipse.b, truth.b - 0.5, tol_px);
+    if (truth.a - truth.b > 2.0) {
+      EXPECT_NEAR(test::angleDiffDeg(d.ellipse.angle_deg, truth.angle_deg), 0.0, 2.0);
+    }
+  }
+  // A white disk without spots on its own black card: the target's look-alike.
+  void drawPlainDisk(cv::Mat& img, cv::Point centre, int radius) {
+    cv::rectangle(img, cv::Rect(centre.x - radius - 15, centre.y - radius - 15, 2 * radius + 30, 2 * radius + 30),
+                  cv::Scalar(scene.black_level), cv::FILLED);
+    cv::circle(img, centre, radius, cv::Scalar(scene.white_level), cv::FILLED, cv::LINE_AA);
+  }
+
+  CameraModel camera;
+  TargetGeometry target;
+  VirtualSceneOptions scene;
+  EllipseOptions options;
+  test::PathPipeline pipe;
+  EllipseWorkspace ws;
+  std::vector<TargetDetection> found;
+};
+
+TEST_F(TargetScene, FoundWithItsSpotsAcrossPoses) {
+  for (const Pose pose : {Pose{0, 0, 0, 0, 0, 800}, Pose{40, 30, 20, 30, -20, 800}, Pose{60, 0, 90, -80, 40, 600},
+                          Pose{0, 55, -30, 0, 0, 1500}, Pose{20, -20, 0, 100, 80, 3000}}) {
+    SCOPED_TRACE(::testing::Message() << pose.rx_deg << " " << pose.ry_deg << " " << pose.tz_mm);
+    ASSERT_EQ(detect(render(pose)), Status::Ok);
+    ASSERT_EQ(found.size(), 1u);
+    const TargetDetection& d = found[0];
+    EXPECT_TRUE(d.spots_found);
+    EXPECT_FALSE(d.robust);
+    expectEllipseOfPose(d, pose);
+    // The centre spot lies near the projected disk centre.
+    const Eigen::Vector2d centre = projectIdeal(camera, translation(pose));
+    const PathSummary& spot = ws.paths[d.spot_paths[0]];
+    EXPECT_NEAR(spot.cx, centre.x(), 1.0);
+    EXPECT_NEAR(spot.cy, centre.y(), 1.0);
+    EXPECT_LT(d.fit_error, options.max_relative_error);
+    EXPECT_GT(d.traced, 0.95);
+  }
+}
+
+TEST_F(TargetScene, PlainDiskAndClutterAreNotTheTarget) {
+  scene.clutter = 25;
+  const Pose pose{30, -20, 10, 60, 40, 900};
+  cv::Mat img = render(pose);
+  drawPlainDisk(img, {110, 110}, 50);  // larger and rounder than the target
+  cv::rectangle(img, cv::Rect(480, 330, 120, 60), cv::Scalar(scene.white_level), cv::FILLED);
+  ASSERT_EQ(detect(img), Status::Ok);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_TRUE(found[0].spots_found);
+  expectEllipseOfPose(found[0], pose);
+  // Both the disk and the target are ellipses to the shape-only classification.
+  std::vector<TargetDetection> shapes;
+  ASSERT_EQ(detectEllipses(options, pipe.paths, img.size(), ws, shapes), Status::Ok);
+  bool disk_seen = false;
+  for (const auto& s : shapes) disk_seen |= std::hypot(s.ellipse.cx - 110, s.ellipse.cy - 110) < 1.0;
+  EXPECT_TRUE(disk_seen);
+}
+
+TEST_F(TargetScene, WithoutTheTargetThePlainDiskIsOnlyAFallback) {
+  cv::Mat img(480, 640, CV_8UC1, cv::Scalar(scene.background_level));
+  drawPlainDisk(img, {320, 240}, 60);
+  ASSERT_EQ(detect(img), Status::Ok);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_FALSE(found[0].spots_found);
+  EXPECT_EQ(found[0].spot_paths[0], kNoPath);
+  EXPECT_NEAR(found[0].ellipse.cx, 320.0, 0.5);
+  options.require_target_spots = true;
+  EXPECT_EQ(detect(img), Status::NoTarget);
+}
+
+TEST_F(TargetScene, TwoTargetsAreAmbiguousOrBothReported) {
+  const Pose left{0, 20, 0, -150, 0, 800}, right{10, -30, 45, 150, 20, 800};
+  cv::Mat img = render(left);
+  const cv::Mat other = render(right);
+  // Paste the right target's card (its projected corners' box) into the left frame.
+  double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
+  const Eigen::Matrix3d R = rotationMatrix(right);
+  for (double sx : {-1.0, 1.0})
+    for (double sy : {-1.0, 1.0}) {
+      const Eigen::Vector2d p =
+          projectIdeal(camera, R * Eigen::Vector3d(sx * 65, sy * 65, 0) + translation(right));
+      x0 = std::min(x0, p.x()), y0 = std::min(y0, p.y()), x1 = std::max(x1, p.x()), y1 = std::max(y1, p.y());
+    }
+  const cv::Rect box = cv::Rect(cv::Point(int(x0) - 1, int(y0) - 1), cv::Point(int(x1) + 2, int(y1) + 2)) &
+                       cv::Rect(0, 0, img.cols, img.rows);
+  other(box).copyTo(img(box));
+  EXPECT_EQ(detect(img), Status::AmbiguousTarget);
+  ASSERT_EQ(found.size(), 2u);
+  options.report_all_targets = true;
+  ASSERT_EQ(detect(img), Status::Ok);
+  ASSERT_EQ(found.size(), 2u);
+  const bool left_first = found[0].ellipse.cx < found[1].ellipse.cx;
+  expectEllipseOfPose(found[left_first ? 0 : 1], left);
+  expectEllipseOfPose(found[left_first ? 1 : 0], right);
+}
+
+// Covers the cap of the disk image beyond the chord at `depth` (fraction of the radius
+// measured from the centre along -v): the occluded share of the contour is
+// acos(depth) / pi.
+void occludeCap(cv::Mat& img, const Ellipse& e, double depth, int level) {
+  std::vector<cv::Point> poly;
+  const double y_chord = e.cy - depth * e.b;  // the test poses keep the axes along u, v
+  poly.emplace_back(int(e.cx - e.a - 20), int(y_chord));
+  poly.emplace_back(int(e.cx + e.a + 20), int(y_chord));
+  poly.emplace_back(int(e.cx + e.a + 20), int(e.cy - e.b - 20));
+  poly.emplace_back(int(e.cx - e.a - 20), int(e.cy - e.b - 20));
+  cv::fillConvexPoly(img, poly, cv::Scalar(level));
+}
+
+TEST_F(TargetScene, OccludedTargetFoundByConsensusFit) {
+  const Pose pose{0, 25, 0, 0, 0, 700};
+  const Ellipse truth = test::diskImage(camera, target, pose);
+  for (const double share : {0.12, 0.2}) {  // of the contour hidden
+    SCOPED_TRACE(share);
+    cv::Mat img = render(pose);
+    occludeCap(img, truth, std::cos(share * kPi), scene.black_level);
+    ASSERT_EQ(detect(img), Status::Ok);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_TRUE(found[0].robust);
+    EXPECT_TRUE(found[0].spots_found);
+    expectEllipseOfPose(found[0], pose, 1.0);
+    EXPECT_GE(found[0].traced, options.robust_min_traced_fraction);
+    EXPECT_LT(found[0].traced, 1.0 - share + 0.05);
+  }
+  // Without the consensus fit the straight part spoils the plain fit (thesis fig. 2.28).
+  cv::Mat img = render(pose);
+  occludeCap(img, truth, std::cos(0.2 * kPi), scene.black_level);
+  options.robust_fit = false;
+  options.require_target_spots = true;
+  EXPECT_EQ(detect(img), Status::NoTarget);
+}
+
+TEST_F(TargetScene, MoreThanAQuarterOccludedIsNotATarget) {
+  const Pose pose{0, 25, 0, 0, 0, 700};
+  cv::Mat img = render(pose);
+  occludeCap(img, test::diskImage(camera, target, pose), std::cos(0.35 * kPi), scene.black_level);
+  EXPECT_EQ(detect(img), Status::NoTarget);
+}
+
+TEST_F(TargetScene, WhiteOccluderMergedWithTheDisk) {
+  const Pose pose{0, 0, 0, 0, 0, 700};
+  cv::Mat img = render(pose);
+  const Ellipse truth = test::diskImage(camera, target, pose);
+  // A white bar over the black card, overlapping the disk's lower rim.
+  cv::rectangle(img, cv::Rect(int(truth.cx - 15), int(truth.cy + truth.b - 8), 30, 200),
+                cv::Scalar(scene.white_level), cv::FILLED);
+  ASSERT_EQ(detect(img), Status::Ok);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_TRUE(found[0].robust);
+  expectEllipseOfPose(found[0], pose, 1.0);
+}
+
+TEST_F(TargetScene, BorderCutTargetIsFitted) {
+  // About a quarter of the disk beyond the left border (thesis fig. 2.27); the spots stay in.
+  const Pose pose{0, 0, 0, -240, 0, 700};
+  const Ellipse truth = test::diskImage(camera, target, pose);
+  ASSERT_LT(truth.cx - truth.a, -10.0);
+  ASSERT_GT(truth.cx - 0.5 * truth.a, 0.0);
+  ASSERT_EQ(detect(render(pose)), Status::Ok);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_FALSE(found[0].robust);
+  expectEllipseOfPose(found[0], pose, 1.0);
+  EXPECT_LT(found[0].traced, 0.9);
+}
+
+TEST_F(TargetScene, BennettFindsTheTarget) {
+  options.method = EllipseMethod::Bennett;
+  const Pose pose{20, 30, 0, 0, 0, 800};
+  ASSERT_EQ(detect(render(pose)), Status::Ok);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_TRUE(found[0].spots_found);
+  EXPECT_GT(found[0].bennett_score, options.bennett_min_score);
+  expectEllipseOfPose(found[0], pose);
+}
+
+TEST(TargetDetection, EmptyAndTinyInputs) {
+  EllipseWorkspace ws;
+  std::vector<TargetDetection> out;
+  Paths paths;
+  EXPECT_EQ(detectTarget(EllipseOptions{}, TargetGeometry{}, paths, {640, 480}, ws, out), Status::NoTarget);
+  EXPECT_TRUE(out.empty());
+  EXPECT_EQ(detectEllipses(EllipseOptions{}, paths, {640, 480}, ws, out), Status::NoTarget);
+  for (std::int16_t i = 0; i < 5; ++i) paths.pixels.push_back({i, i, 1, 1});
+  paths.starts.push_back(5);
+  EXPECT_EQ(detectTarget(EllipseOptions{}, TargetGeometry{}, paths, {640, 480}, ws, out), Status::NoTarget);
+  EllipseFit fit;
+  EllipseTrace trace;
+  EXPECT_EQ(fitEllipseRobust(EllipseOptions{}, paths.path(0).first(5), {640, 480}, ws, fit, trace),
+            Status::TooFewPoints);
+}
+
+}  // namespace
+}  // namespace imagepro
