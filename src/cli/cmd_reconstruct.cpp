@@ -7,6 +7,7 @@
 #include "core/common/pose_csv.h"
 #include "core/pipeline/data_out.h"
 #include "core/pipeline/engine.h"
+#include "core/pipeline/frame_clock.h"
 
 namespace imagepro::cli {
 namespace {
@@ -31,7 +32,7 @@ std::string jsonRow(const FrameResult& r) {
 
 int run(const Args& args) {
   std::vector<std::string> known = kFrameInputOptions;
-  known.insert(known.end(), {"format", "data-out", "truth"});
+  known.insert(known.end(), {"format", "data-out", "truth", "no-pace"});
   args.rejectUnknown(known);
   const std::string format = args.valueOr("format", "csv");
   if (format != "csv" && format != "json") throw UsageError("--format must be csv or json");
@@ -52,8 +53,16 @@ int run(const Args& args) {
   else
     std::printf("[");
   bool first = true;
+  // Camera and Virtual sources run at their own frame rate unless told otherwise.
+  FramePacer pacer(args.has("no-pace") ? 0.0 : source->frameRateHz());
+  LoopMeter meter;
+  std::int64_t frames = 0, reconstructed = 0;
   for (;;) {
+    pacer.wait();
     if (engine.step(*source, result) == Status::EndOfStream) break;
+    meter.tick();
+    ++frames;
+    if (result.pose) ++reconstructed;
     const std::string frame = result.name.empty() ? std::to_string(result.index) : result.name;
     if (format == "csv") {
       std::string extra;
@@ -80,6 +89,10 @@ int run(const Args& args) {
     std::fflush(stdout);
   }
   if (format == "json") std::printf("\n]\n");
+  std::fprintf(stderr, "%lld frames, %lld reconstructed", static_cast<long long>(frames),
+               static_cast<long long>(reconstructed));
+  if (meter.hz() > 0) std::fprintf(stderr, "; %.1f Hz at %.0f %% of one core", meter.hz(), meter.cpuPercent());
+  std::fprintf(stderr, "\n");
   return 0;
 }
 
@@ -92,8 +105,9 @@ const CommandRegistration kRegistration{{
         "\n\nOne row per frame: frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm.\n"
         "A frame without a target is a row with the error's name, not a failed command.\n"
         "  --truth          add the ground-truth pose columns (virtual frames)\n"
+        "  --no-pace        run a camera or virtual source as fast as possible, not at its frame rate\n"
         "  --data-out FILE  also write the full data-out CSV (regions, stage times) to FILE",
-    {"virtual", "truth"},
+    {"virtual", "truth", "no-pace"},
     run,
 }};
 
