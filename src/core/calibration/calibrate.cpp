@@ -105,7 +105,10 @@ Status calibrateDistortion(const Settings& settings, std::span<const cv::Mat> im
   result.images.assign(images.size(), {});
   SpotFinderWorkspace finder;
   for (size_t i = 0; i < images.size(); ++i) {
-    state[i].spotStatus = findPatternSpots(images[i], settings.pipeline.threshold, finder, state[i].observed);
+    const bool cameraSize = images[i].cols == settings.camera.width && images[i].rows == settings.camera.height;
+    state[i].spotStatus = images[i].empty() || cameraSize
+                              ? findPatternSpots(images[i], settings.pipeline.threshold, finder, state[i].observed)
+                              : Status::InvalidSettings;
     result.images[i].status = state[i].spotStatus;
     result.images[i].spots_found = static_cast<int>(state[i].observed.size());
   }

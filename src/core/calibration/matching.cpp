@@ -13,6 +13,9 @@ namespace imagepro {
 namespace {
 
 constexpr double kCellPx = 16.0;
+// How far outside the image an ideal position may lie: the polynomial of eq. 4.7 folds far
+// outside (at a few image widths it can put a point back into the image).
+constexpr double kOutsideMarginFraction = 0.1;
 
 // Area of the ellipse x^T M x = 0 (x = (u, v, 1)); 0 when it is not a real ellipse.
 double conicArea(const Eigen::Matrix3d& M, const Eigen::Vector2d& centre) {
@@ -62,6 +65,10 @@ void projectPatternSpots(const CameraModel& camera, const PatternGeometry& patte
     uv = projectIdeal(camera, P);
     return true;
   };
+  auto inside = [&](const Eigen::Vector2d& p, double margin) {
+    return p.x() >= -0.5 - margin && p.y() >= -0.5 - margin && p.x() <= camera.width - 0.5 + margin &&
+           p.y() <= camera.height - 0.5 + margin;
+  };
   // Every point of the spot must lie in front of the camera for its image to be an ellipse.
   const double minDepth = radius * R.col(2).head<2>().norm() + 1e-6;
   for (int k = 0; k < static_cast<int>(spots.size()); ++k) {
@@ -72,8 +79,8 @@ void projectPatternSpots(const CameraModel& camera, const PatternGeometry& patte
         imageConicOfTargetCircle(camera, pose, spot.position_mm.x(), spot.position_mm.y(), radius);
     Eigen::Vector2d centre;
     if (!conicMatrixCentre(M, centre)) continue;
-    if (!(centre.x() >= -0.5 && centre.y() >= -0.5 && centre.x() <= camera.width - 0.5 &&
-          centre.y() <= camera.height - 0.5))
+    if (!inside(centre, kOutsideMarginFraction * std::hypot(camera.width, camera.height)) ||
+        !inside(distortPixel(camera, centre), 0.0))
       continue;
     const double area = conicArea(M, centre);
     if (!(area > 0.0)) continue;

@@ -44,7 +44,9 @@ struct IdealSpot {
   double spacing_px = 0.0;  // ideal image distance to the nearest neighbouring grid node
 };
 
-// Spots in front of the camera whose ideal position lies inside the image.
+// Spots in front of the camera that the current estimate (camera.distortion) puts inside
+// the image (a barrel lens draws in spots whose ideal position lies outside it), their
+// ideal position at most a tenth of the image diagonal outside (farther out the model folds).
 void projectPatternSpots(const CameraModel& camera, const PatternGeometry& pattern,
                          std::span<const PatternSpot> spots, const Pose& pose, std::vector<IdealSpot>& out);
 
