@@ -11,8 +11,6 @@
 #include <optional>
 #include <vector>
 
-#include "core/connectivity/paths.h"
-#include "core/edges/edge_list.h"
 #include "core/pipeline/frame_result.h"
 #include "core/settings/options.h"
 
@@ -31,13 +29,13 @@ struct DisplayPacket {
   FrameResult result;
   DisplayOptions display;                 // the options the copies below were made for
   EllipseMethod ellipse_method = EllipseMethod::DirectFit;
+  // Images ready to paint (RGB32, converted in the worker thread, not the GUI's).
   QImage background;                      // full-frame grey source (Background::Source)
-  QImage binary;                          // the searched region, thresholded
+  QImage binary;                          // the searched region, thresholded (Background::Binary)
   QPoint binary_origin;                   // top-left of `binary` in the frame
   QImage target;                          // the target's region, grey or binary (Target::Source/Binary)
   QPoint target_origin;
-  EdgeList edges;                         // Edges::EdgePixels
-  Paths paths;                            // Edges::ConnectedPaths
+  QImage edge_overlay;                    // frame-sized, transparent but for edge pixels or coloured paths
   std::vector<PoseSample> history;        // every frame since the previous packet, this one last
   double hz = 0.0;                        // frames processed per second
   double cpu_percent = 0.0;               // worker thread CPU time over wall time

@@ -2,11 +2,12 @@
 
 #include <QMouseEvent>
 #include <QPainter>
-#include <QPainterPath>
+#include <QFontMetrics>
 #include <QWheelEvent>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace imagepro::app {
 
@@ -19,13 +20,6 @@ const QColor kDetectedRegion(60, 120, 255); // thesis: blue detected region
 const QColor kEllipse(255, 60, 60);
 const QColor kContour(255, 0, 255);
 const QColor kSpots(255, 200, 0);
-const QColor kEdges(255, 80, 80);
-
-QRgb pathColour(std::size_t i) {
-  // Golden-ratio hue steps: neighbouring paths get clearly different colours.
-  const int hue = static_cast<int>((i * 0.618033988749895 - static_cast<std::size_t>(i * 0.618033988749895)) * 360.0);
-  return QColor::fromHsv(hue, 230, 255).rgba();
-}
 
 QRectF toRectF(const cv::Rect& r) { return QRectF(r.x, r.y, r.width, r.height); }
 
@@ -42,7 +36,6 @@ FrameView::FrameView(QWidget* parent) : QWidget(parent) {
 void FrameView::setPacket(DisplayPacketPtr packet) {
   const QSize old = imageSize();
   packet_ = std::move(packet);
-  rebuildEdgeOverlay();
   if (fit_ || old != imageSize()) fitToWindow();
   update();
 }
@@ -51,24 +44,6 @@ QSize FrameView::imageSize() const {
   if (!packet_) return {};
   const cv::Size s = packet_->result.image_size;
   return {s.width, s.height};
-}
-
-void FrameView::rebuildEdgeOverlay() {
-  const QSize size = imageSize();
-  if (!packet_ || size.isEmpty() || (packet_->edges.empty() && packet_->paths.pixels.empty())) {
-    edge_overlay_ = QImage();
-    return;
-  }
-  if (edge_overlay_.size() != size) edge_overlay_ = QImage(size, QImage::Format_ARGB32_Premultiplied);
-  edge_overlay_.fill(Qt::transparent);
-  const auto put = [&](const EdgePixel& p, QRgb colour) {
-    if (p.x >= 0 && p.y >= 0 && p.x < size.width() && p.y < size.height())
-      reinterpret_cast<QRgb*>(edge_overlay_.scanLine(p.y))[p.x] = colour;
-  };
-  for (const EdgePixel& p : packet_->edges) put(p, kEdges.rgba());
-  const Paths& paths = packet_->paths;
-  for (std::size_t i = 0; i < paths.pathCount(); ++i)
-    for (const EdgePixel& p : paths.path(i)) put(p, pathColour(i));
 }
 
 void FrameView::fitToWindow() {
@@ -113,7 +88,7 @@ void FrameView::paintEvent(QPaintEvent*) {
   if (!p.background.isNull()) painter.drawImage(QPoint(0, 0), p.background);
   if (!p.binary.isNull()) painter.drawImage(p.binary_origin, p.binary);
   if (!p.target.isNull()) painter.drawImage(p.target_origin, p.target);
-  if (!edge_overlay_.isNull()) painter.drawImage(QPoint(0, 0), edge_overlay_);
+  if (!p.edge_overlay.isNull()) painter.drawImage(QPoint(0, 0), p.edge_overlay);
   paintOverlays(painter);
   painter.restore();
   paintNumbers(painter);
@@ -152,7 +127,7 @@ void FrameView::paintOverlays(QPainter& painter) const {
       painter.restore();
     }
   }
-  const double dot = std::max(1.0, 2.0 / zoom_);
+  const double dot = 1.5 / zoom_;  // the same size on screen at every zoom
   if (p.display.feature_edge && !r.contour_points.empty()) {
     painter.setPen(Qt::NoPen);
     painter.setBrush(kContour);
@@ -185,11 +160,15 @@ void FrameView::paintNumbers(QPainter& painter) const {
                                    .arg(t.bennett_symmetry, 0, 'f', 2)
                              : tr("E %1").arg(t.fit_error, 0, 'g', 3);
     const QPointF c = toScreen(QPointF(t.ellipse.cx + 0.5, t.ellipse.cy + 0.5));
-    const QRectF box(c.x() - 100, c.y() + 8, 200, 20);
-    painter.setPen(Qt::black);
-    painter.drawText(box.translated(1, 1), Qt::AlignHCenter | Qt::AlignTop, text);
+    const QFontMetrics metrics(font);
+    QRectF box = metrics.boundingRect(text);
+    box.adjust(-4, -1, 4, 1);
+    box.moveCenter(c + QPointF(0, metrics.height()));  // just below the centre spot
+    painter.setPen(Qt::NoPen);
+    painter.setBrush(QColor(0, 0, 0, 150));
+    painter.drawRoundedRect(box, 3, 3);
     painter.setPen(QColor(255, 255, 120));
-    painter.drawText(box, Qt::AlignHCenter | Qt::AlignTop, text);
+    painter.drawText(box, Qt::AlignCenter, text);
   }
 }
 

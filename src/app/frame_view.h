@@ -42,14 +42,12 @@ class FrameView : public QWidget {
   void resizeEvent(QResizeEvent* event) override;
 
  private:
-  void rebuildEdgeOverlay();
   void paintOverlays(QPainter& painter) const;
   void paintNumbers(QPainter& painter) const;
   QPointF toScreen(QPointF image_point) const;
   QSize imageSize() const;
 
   DisplayPacketPtr packet_;
-  QImage edge_overlay_;   // edge pixels or coloured paths, transparent elsewhere
   bool fit_ = true;       // keep the frame fitted to the view until the user zooms or pans
   double zoom_ = 1.0;
   QPointF offset_;        // screen position of image point (0, 0)'s top-left corner

@@ -254,8 +254,12 @@ void MainWindow::showInfo(const QString& message) { statusBar()->showMessage(mes
 
 void MainWindow::restoreLayout() {
   QSettings store;
-  restoreGeometry(store.value(QStringLiteral("window/geometry")).toByteArray());
-  restoreState(store.value(QStringLiteral("window/state")).toByteArray());
+  if (!restoreGeometry(store.value(QStringLiteral("window/geometry")).toByteArray())) resize(1280, 860);
+  if (!restoreState(store.value(QStringLiteral("window/state")).toByteArray())) {
+    // First run: the frame gets most of the room.
+    resizeDocks({findChild<QDockWidget*>(QStringLiteral("controlDock"))}, {300}, Qt::Horizontal);
+    resizeDocks({findChild<QDockWidget*>(QStringLiteral("plotDock"))}, {260}, Qt::Vertical);
+  }
   control_panel_->restoreState(store);
   last_dir_ = store.value(QStringLiteral("lastDirectory")).toString();
 }

@@ -23,8 +23,8 @@ namespace imagepro::app {
 namespace {
 
 constexpr std::size_t kMaxRecorded = 200000;  // about two hours at 25 Hz
-constexpr std::size_t kShown = 600;           // points on screen per series
-constexpr int kRedrawMs = 100;
+constexpr std::size_t kShown = 400;           // points on screen per series
+constexpr int kRedrawMs = 200;
 
 const char* const kTitles[6] = {"Rx [deg]", "Ry [deg]", "Rz [deg]", "Tx [mm]", "Ty [mm]", "Tz [mm]"};
 
@@ -54,8 +54,15 @@ PosePlots::PosePlots(QWidget* parent) : QWidget(parent), pause_(new QPushButton(
     p.chart->addSeries(p.measured);
     p.x = new QValueAxis;
     p.y = new QValueAxis;
-    p.x->setLabelFormat(QStringLiteral("%.0f"));
-    p.x->setTitleText(tr("t [s]"));
+    QFont small = p.chart->font();
+    small.setPointSizeF(std::max(6.0, small.pointSizeF() * 0.8));
+    p.x->setLabelFormat(QStringLiteral("%.0f s"));
+    p.x->setTickCount(3);
+    p.y->setTickCount(3);
+    p.y->setLabelFormat(QStringLiteral("%.1f"));
+    p.x->setLabelsFont(small);
+    p.y->setLabelsFont(small);
+    p.chart->setTitleFont(small);
     p.chart->addAxis(p.x, Qt::AlignBottom);
     p.chart->addAxis(p.y, Qt::AlignLeft);
     for (QLineSeries* s : {p.measured, p.truth}) {
@@ -63,8 +70,8 @@ PosePlots::PosePlots(QWidget* parent) : QWidget(parent), pause_(new QPushButton(
       s->attachAxis(p.x);
       s->attachAxis(p.y);
     }
+    // No antialiasing: six charts repainted five times a second must stay cheap for the GUI thread.
     auto* view = new QChartView(p.chart);
-    view->setRenderHint(QPainter::Antialiasing);
     view->setMinimumSize(180, 130);
     grid->addWidget(view, i / 3, i % 3);
   }
@@ -95,7 +102,7 @@ PosePlots::PosePlots(QWidget* parent) : QWidget(parent), pause_(new QPushButton(
   connect(redraw_timer_, &QTimer::timeout, this, [this] {
     if (dirty_ && !isPaused() && isVisible()) redraw();
   });
-  redraw_timer_->start(kRedrawMs);  // at most ten redraws a second, whatever the frame rate
+  redraw_timer_->start(kRedrawMs);  // at most five redraws a second, whatever the frame rate
 }
 
 bool PosePlots::isPaused() const { return pause_->isChecked(); }

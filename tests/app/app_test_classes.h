@@ -1,0 +1,95 @@
+#pragma once
+// The application's test classes (one .cpp each), run by test_main.cpp.
+#include <QObject>
+
+#include <memory>
+
+#include "app/main_window.h"
+
+namespace imagepro::app::test {
+
+// Each appendix A panel's controls change the options the worker runs with.
+class PanelTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void init();
+  void cleanup();
+  void thresholdPanel();
+  void edgeAndConnectivityPanels();
+  void ellipsePanel();
+  void rethresholdPanel();
+  void reconstructionPanel();
+  void trackingPanel();
+  void applicationPanel();
+  void displayPanels();
+  void settingsDialog();
+  void listsComeFromTheEnumTables();
+ private:
+  std::unique_ptr<MainWindow> window_;
+};
+
+// The worker thread on its own: frames, pending settings, latest frame wins.
+class WorkerTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void latestFrameWins();
+  void settingsApplyAtTheNextFrame();
+};
+
+// Virtual input in the window: start / stop and the appendix A keys.
+class VirtualTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void init();
+  void cleanup();
+  void startStopProducesFrames();
+  void keysMoveTheTarget();
+  void keysInFieldsDoNotMoveTheTarget();
+  void guiStaysResponsiveAtFullSpeed();
+ private:
+  std::unique_ptr<MainWindow> window_;
+};
+
+// File input: parameters shown, reprocessing on option changes, errors shown.
+class FileTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void init();
+  void cleanup();
+  void fileIsProcessedAndParametersShown();
+  void optionChangeReprocessesTheFile();
+  void folderIsPlayedInNaturalOrder();
+  void missingFileShowsAnError();
+ private:
+  std::unique_ptr<MainWindow> window_;
+};
+
+// Screenshot and Data Out.
+class OutputTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void init();
+  void cleanup();
+  void screenshotWritesPng();
+  void screenshotToBadPathShowsError();
+  void dataOutWritesEveryFrame();
+  void dataOutNeverOverwritesSilently();
+  void plotsRecordAndExport();
+ private:
+  std::unique_ptr<MainWindow> window_;
+};
+
+// Save / Load / Restore defaults, and malformed files.
+class SettingsFileTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void init();
+  void cleanup();
+  void roundTrip();
+  void malformedFileNamesTheKey();
+  void unreadableFileIsAnError();
+ private:
+  std::unique_ptr<MainWindow> window_;
+};
+
+}  // namespace imagepro::app::test

@@ -1,0 +1,53 @@
+#pragma once
+// Shared helpers of the application tests: scratch folders, waiting for the frame
+// the worker sends, and driving the control panel's widgets.
+#include <QAbstractButton>
+#include <QComboBox>
+#include <QString>
+#include <QWidget>
+
+#include <functional>
+
+#include "app/main_window.h"
+#include "core/settings/enum_names.h"
+
+namespace imagepro::app::test {
+
+// An empty folder IMAGEPRO_TEST_TMP/app/<name>.
+QString scratchDir(const QString& name);
+
+// Processes events until the shown frame satisfies `pred` (false after `ms`).
+bool waitForFrame(MainWindow& window, const std::function<bool(const FrameResult&)>& pred, int ms = 15000);
+// Until the worker runs with settings satisfying `pred`.
+bool waitForApplied(MainWindow& window, const std::function<bool(const Settings&)>& pred, int ms = 5000);
+
+template <class E>
+QString entryName(E value) {
+  const std::string_view n = enumName(value);
+  return QString::fromUtf8(n.data(), static_cast<qsizetype>(n.size()));
+}
+
+// Selects `value` in a combo box built from the enum's table; false if absent.
+template <class E>
+bool choose(QComboBox* box, E value) {
+  if (!box) return false;
+  const int i = box->findData(static_cast<int>(value));
+  if (i < 0 || box->itemText(i) != entryName(value)) return false;
+  box->setCurrentIndex(i);
+  return true;
+}
+
+// Clicks the radio button named after `value` inside the widget `group`.
+template <class E>
+bool chooseRadio(QWidget* group, E value) {
+  if (!group) return false;
+  for (QAbstractButton* b : group->findChildren<QAbstractButton*>()) {
+    if (b->text() == entryName(value)) {
+      b->click();
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace imagepro::app::test

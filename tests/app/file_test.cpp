@@ -1,0 +1,93 @@
+// File input: the image is processed and its parameters shown; an option change
+// reprocesses it; folders play in natural order; a bad file is a message, not a crash.
+#include <QComboBox>
+#include <QDir>
+#include <QFile>
+#include <QSpinBox>
+#include <QTest>
+
+#include <cmath>
+
+#include "app/control_panel.h"
+#include "app/frame_view.h"
+#include "app/main_window.h"
+#include "app/source_panel.h"
+#include "app/worker.h"
+#include "app_test_classes.h"
+#include "app_test_support.h"
+
+namespace imagepro::app::test {
+
+namespace {
+
+const QString kSamples = QStringLiteral(IMAGEPRO_DATA_DIR "/samples/");
+
+}  // namespace
+
+void FileTest::init() {
+  window_ = std::make_unique<MainWindow>();
+  window_->show();
+}
+
+void FileTest::cleanup() { window_.reset(); }
+
+void FileTest::fileIsProcessedAndParametersShown() {
+  MainWindow& w = *window_;
+  w.openPaths({kSamples + QStringLiteral("sample01_facing.png")});
+  QCOMPARE(w.controlPanel()->sourcePanel()->kind(), SourceKind::File);
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample01_facing.png"; }));
+  const FrameResult& r = w.frameView()->packet()->result;
+  // data/samples/truth.csv: facing the camera at Tz = 800 mm.
+  QVERIFY2(r.status == Status::Ok, statusName(r.status).data());
+  QVERIFY(r.pose.has_value());
+  QVERIFY(std::abs(r.pose->tz_mm - 800.0) < 16.0);
+  QVERIFY(std::abs(r.pose->tx_mm) < 5.0 && std::abs(r.pose->ty_mm) < 5.0);
+  const QString text = w.resultsText();
+  QVERIFY(text.contains(QStringLiteral("sample01_facing.png")));
+  QVERIFY(text.contains(QString::number(r.pose->tz_mm, 'f', 2)));
+  QVERIFY(text.contains(QStringLiteral("Threshold %1").arg(r.threshold)));
+  QVERIFY(text.contains(QStringLiteral("Status    ok")));
+  // A single file is processed once; the worker then waits.
+  QTRY_VERIFY(!w.worker()->isRunning());
+}
+
+void FileTest::optionChangeReprocessesTheFile() {
+  MainWindow& w = *window_;
+  w.openPaths({kSamples + QStringLiteral("sample02_clutter.png")});
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample02_clutter.png"; }));
+  QTRY_VERIFY(!w.worker()->isRunning());
+  QVERIFY(choose(w.findChild<QComboBox*>(QStringLiteral("thresholdMethod")), ThresholdMethod::Manual));
+  w.findChild<QSpinBox*>(QStringLiteral("thresholdValue"))->setValue(61);
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample02_clutter.png" && r.threshold == 61; }));
+  QVERIFY(!w.worker()->isRunning());
+}
+
+void FileTest::folderIsPlayedInNaturalOrder() {
+  MainWindow& w = *window_;
+  const QString dir = scratchDir(QStringLiteral("folder"));
+  // img10 after img2: natural order, not text order.
+  QVERIFY(QFile::copy(kSamples + QStringLiteral("sample01_facing.png"), dir + QStringLiteral("/img2.png")));
+  QVERIFY(QFile::copy(kSamples + QStringLiteral("sample03_tilted50.png"), dir + QStringLiteral("/img10.png")));
+  w.openPaths({dir});
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "img10.png"; }));
+  QTRY_VERIFY(!w.worker()->isRunning());
+  // The last image stays and is the one reprocessed.
+  QCOMPARE(w.frameView()->packet()->result.name, std::string("img10.png"));
+}
+
+void FileTest::missingFileShowsAnError() {
+  MainWindow& w = *window_;
+  const QString missing = scratchDir(QStringLiteral("missing")) + QStringLiteral("/nothing-here.png");
+  w.openPaths({missing});
+  QTRY_VERIFY_WITH_TIMEOUT(!w.lastError().isEmpty(), 5000);
+  QVERIFY(w.lastError().contains(QStringLiteral("nothing-here.png")));
+  // A folder without images is refused with a message as well.
+  const QString empty = scratchDir(QStringLiteral("empty"));
+  w.openPaths({empty});
+  QTRY_VERIFY_WITH_TIMEOUT(w.lastError().contains(QStringLiteral("empty")), 5000);
+  // The window still works: a good file afterwards is processed.
+  w.openPaths({kSamples + QStringLiteral("sample01_facing.png")});
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample01_facing.png"; }));
+}
+
+}  // namespace imagepro::app::test
