@@ -8,8 +8,9 @@
 //     with options.refine_pose (beyond the thesis, on by default) only the first
 //     iteration does so: step 7 also corrects each image's pose from its spots
 //     (distortion_fit.h: fitDistortionAndPoses), and the next iteration starts from the
-//     corrected pose. The target's own pose errs by tenths of a degree, which at the
-//     pattern's edges is pixels; the accuracy asked of the distortion is 0.1 px;
+//     corrected pose. The target's own pose errs by hundredths to tenths of a degree,
+//     which at the pattern's edges, far from the target, is tenths of a pixel or more
+//     (docs/calibration.md);
 //  4. project the pattern's spots to their ideal image positions (matching.h);
 //  5. find the spots' centres in the image (spots.h; done once, it needs no estimate);
 //  6. match ideal to seen positions from the origin outwards (matching.h) and take the

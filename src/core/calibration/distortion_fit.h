@@ -49,9 +49,9 @@ Eigen::Matrix<double, 2, 6> poseJacobian(const CameraModel& camera, const Eigen:
 
 // Eq. 4.8 with six more columns per image, the linearised correction of that image's
 // pose: delta = A x + J_pose c_image. Step 3 reconstructs the pattern plane from the
-// target alone, whose pose errs by some tenths of a degree; over the pattern that is
-// pixels of displacement, which eq. 4.8 alone would take for distortion. Solving both
-// together (the same column-scaled QR) separates them. Samples with image < 0 carry no
+// target alone, whose pose errs by hundredths to tenths of a degree; far from the target
+// that is tenths of a pixel of displacement or more, which eq. 4.8 alone would take for
+// distortion. Solving both together (the same column-scaled QR) separates them. Samples with image < 0 carry no
 // pose column. `corrections` gets one entry per image (zero for images without samples).
 Status fitDistortionAndPoses(std::span<const DistortionSample> samples, Distortion& out,
                              std::vector<PoseCorrection>& corrections);
