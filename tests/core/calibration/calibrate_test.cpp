@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -174,6 +175,29 @@ TEST_F(CalibrationProcedure, FourViewsFromTheTargetAlone) {
   }
   std::printf("field rms %.4f px max %.4f px, %d iterations, residual %.4f px\n", c.rms_px, c.max_px, r.iterations,
               r.rms_residual_px);
+}
+
+TEST_F(CalibrationProcedure, AViewWithoutItsTargetIsReportedAndSkipped) {
+  // The card and its target covered by a white sheet: the pattern is there, the target not.
+  CameraModel lens = settings_.camera;
+  lens.distortion = kThesisCameraDistortion;
+  const double h = 0.5 * settings_.pattern.card_size_mm + 10.0;
+  std::vector<cv::Point> cover;
+  const Eigen::Matrix3d R = rotationMatrix(poses_[1]);
+  for (const Eigen::Vector2d& c : {Eigen::Vector2d(-h, -h), Eigen::Vector2d(h, -h), Eigen::Vector2d(h, h),
+                                   Eigen::Vector2d(-h, h)}) {
+    const Eigen::Vector2d px =
+        distortPixel(lens, projectIdeal(lens, R * Eigen::Vector3d(c.x(), c.y(), 0.0) + translation(poses_[1])));
+    cover.emplace_back(static_cast<int>(std::lround(px.x())), static_cast<int>(std::lround(px.y())));
+  }
+  cv::fillConvexPoly(images_[1], cover, cv::Scalar(230));
+  CalibrationResult r;
+  ASSERT_EQ(calibrateDistortion(settings_, images_, r), Status::Ok);
+  EXPECT_EQ(r.images[1].status, Status::NoTarget);
+  EXPECT_EQ(r.images[1].match.matched, 0);
+  EXPECT_EQ(r.history.back().images_used, 3);
+  EXPECT_LE(r.iterations, 5);
+  EXPECT_LT(compareDistortionFields(settings_.camera, r.distortion, kThesisCameraDistortion).rms_px, 0.1);
 }
 
 TEST_F(CalibrationProcedure, AnImageWithoutTargetIsReportedAndSkipped) {

@@ -8,6 +8,7 @@
 #include <ostream>
 #include <vector>
 
+#include "core/calibration/spacing.h"
 #include "core/common/status.h"
 #include "core/settings/settings.h"
 #include "core/source/virtual_renderer.h"
@@ -18,10 +19,7 @@ inline void PrintTo(Status s, std::ostream* os) { *os << statusName(s); }
 
 namespace testing {
 
-inline std::array<Pose, 4> calibrationViews(double tz_mm = 800.0) {
-  return {Pose{45.0, 0.0, 0.0, 0.0, 0.0, tz_mm}, Pose{-45.0, 0.0, 0.0, 0.0, 0.0, tz_mm},
-          Pose{0.0, 45.0, 0.0, 0.0, 0.0, tz_mm}, Pose{0.0, -45.0, 0.0, 0.0, 0.0, tz_mm}};
-}
+inline std::array<Pose, 4> calibrationViews() { return recommendedCalibrationViews(800.0); }
 
 // Grey, blurred and noisy, as a camera would see the printed pattern.
 inline VirtualSceneOptions realisticScene() {
