@@ -127,12 +127,18 @@ void FrameView::paintOverlays(QPainter& painter) const {
       painter.restore();
     }
   }
-  const double dot = 1.5 / zoom_;  // the same size on screen at every zoom
   if (p.display.feature_edge && !r.contour_points.empty()) {
-    painter.setPen(Qt::NoPen);
-    painter.setBrush(kContour);
-    for (const cv::Point2f& c : r.contour_points) painter.drawEllipse(QPointF(c.x, c.y), dot, dot);
-    painter.setBrush(Qt::NoBrush);
+    // Square cosmetic points without antialiasing: hundreds of them cost next to nothing.
+    painter.setRenderHint(QPainter::Antialiasing, false);
+    QPen dots(kContour);
+    dots.setCosmetic(true);
+    dots.setWidthF(3.0);
+    painter.setPen(dots);
+    QPolygonF points;
+    points.reserve(static_cast<qsizetype>(r.contour_points.size()));
+    for (const cv::Point2f& c : r.contour_points) points.append(QPointF(c.x, c.y));
+    painter.drawPoints(points);
+    painter.setRenderHint(QPainter::Antialiasing, true);
   }
   if (p.display.feature_spots && r.reached >= ApplicationLevel::Reconstruction && r.pose) {
     pen.setColor(kSpots);

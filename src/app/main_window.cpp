@@ -3,6 +3,7 @@
 #include <QApplication>
 #include <QCloseEvent>
 #include <QDockWidget>
+#include <QFileInfo>
 #include <QFontDatabase>
 #include <QIcon>
 #include <QImageReader>
@@ -21,6 +22,7 @@
 #include "app/message_banner.h"
 #include "app/output_panel.h"
 #include "app/pose_plots.h"
+#include "app/recent_files.h"
 #include "app/results_text.h"
 #include "app/settings_binder.h"
 #include "app/source_panel.h"
@@ -34,7 +36,6 @@ namespace imagepro::app {
 
 namespace {
 
-constexpr int kChartRefreshMs = 100;
 
 QIcon applicationIcon() {
   // The SVG is the drawing; the PNG rendering of it serves where Qt has no SVG plugin.
@@ -59,14 +60,9 @@ MainWindow::MainWindow(QWidget* parent)
   buildMenus();
   connectWorker();
 
-  chart_timer_ = new QTimer(this);
-  connect(chart_timer_, &QTimer::timeout, this, [this] {
-    if (!charts_dirty_ || !latest_) return;
-    charts_dirty_ = false;
-    if (histogram_->isVisible()) histogram_->setHistogram(latest_->result.histogram, latest_->result.threshold);
-    if (stage_times_->isVisible()) stage_times_->setTimes(latest_->result.times);
-  });
-  chart_timer_->start(kChartRefreshMs);
+  readout_timer_ = new QTimer(this);
+  connect(readout_timer_, &QTimer::timeout, this, &MainWindow::refreshReadouts);
+  readout_timer_->start(kReadoutMs);
 
   connect(binder_, &SettingsBinder::changed, this, &MainWindow::onSettingsEdited);
   qApp->installEventFilter(this);
@@ -147,7 +143,10 @@ void MainWindow::buildDocks() {
   addDockWidget(Qt::BottomDockWidgetArea, plots);
   connect(plots_, &PosePlots::message, this, &MainWindow::showInfo);
   connect(plots_, &PosePlots::error, this, &MainWindow::showError);
-  connect(tabs, &QTabWidget::currentChanged, this, [this] { charts_dirty_ = true; });
+  connect(tabs, &QTabWidget::currentChanged, this, [this] {
+    readouts_dirty_ = true;
+    refreshReadouts();
+  });
 
   SourcePanel* source = control_panel_->sourcePanel();
   connect(source, &SourcePanel::openFileRequested, this, [this] { openDialog(false); });
@@ -195,19 +194,31 @@ void MainWindow::connectWorker() {
 void MainWindow::onPacket(const DisplayPacketPtr& packet) {
   ++packets_shown_;
   latest_ = packet;
-  charts_dirty_ = true;
+  readouts_dirty_ = true;
   view_->setPacket(packet);
-  results_text_->setText(formatResults(*packet));
   plots_->append(packet->history);
-  const FrameResult& r = packet->result;
-  status_rate_->setText(tr("%1 Hz  CPU %2 %").arg(packet->hz, 0, 'f', 1).arg(packet->cpu_percent, 0, 'f', 0));
+  // A hidden view will not paint: let the worker send the next packet anyway.
+  if (!view_->isVisible()) worker_->markDisplayed();
+  // The first frame after a pause is shown at once; while running, text and charts
+  // follow at the readout rate (nobody reads numbers changing faster).
+  if (!readout_clock_.isValid() || readout_clock_.elapsed() >= kReadoutMs) refreshReadouts();
+  emit packetShown();
+}
+
+void MainWindow::refreshReadouts() {
+  if (!readouts_dirty_ || !latest_) return;
+  readouts_dirty_ = false;
+  readout_clock_.start();
+  const DisplayPacket& packet = *latest_;
+  const FrameResult& r = packet.result;
+  results_text_->setText(formatResults(packet));
+  status_rate_->setText(tr("%1 Hz  CPU %2 %").arg(packet.hz, 0, 'f', 1).arg(packet.cpu_percent, 0, 'f', 0));
   status_state_->setText(statusInWords(r.status));
   status_state_->setStyleSheet(r.status == Status::Ok || r.status == Status::Stopped ? QString()
                                                                                      : QStringLiteral("color: #b00020;"));
-  if (!packet->source.isEmpty()) status_source_->setText(packet->source);
-  // A hidden view will not paint: let the worker send the next packet anyway.
-  if (!view_->isVisible()) worker_->markDisplayed();
-  emit packetShown();
+  if (!packet.source.isEmpty()) status_source_->setText(packet.source);
+  if (histogram_->isVisible()) histogram_->setHistogram(r.histogram, r.threshold);
+  if (stage_times_->isVisible()) stage_times_->setTimes(r.times);
 }
 
 void MainWindow::onSettingsEdited() { worker_->setSettings(settings_); }
@@ -238,11 +249,15 @@ void MainWindow::stopSource() { worker_->stop(); }
 
 void MainWindow::openPaths(const QStringList& paths) {
   if (paths.isEmpty()) return;
+  last_dir_ = QFileInfo(paths.front()).absolutePath();
+  for (const QString& p : paths) recent_->add(p);
   selectSource(SourceKind::File);
   worker_->openFiles(paths);
 }
 
 QString MainWindow::resultsText() const { return results_text_->text(); }
+
+QStringList MainWindow::recentPaths() const { return recent_->paths(); }
 
 void MainWindow::showError(const QString& message) {
   last_error_ = message;

@@ -3,6 +3,7 @@
 // (frame view and results text), the plots dock and the status bar. It holds the
 // one Settings model the panels edit and hands copies to the worker thread; it
 // draws what the worker sends and holds no algorithm itself.
+#include <QElapsedTimer>
 #include <QMainWindow>
 #include <QThread>
 
@@ -57,6 +58,7 @@ class MainWindow : public QMainWindow {
   QString resultsText() const;
   QString lastError() const { return last_error_; }
   QString dataOutPath() const { return data_out_path_; }
+  QStringList recentPaths() const;
   std::int64_t packetsShown() const { return packets_shown_; }
 
  signals:
@@ -76,6 +78,7 @@ class MainWindow : public QMainWindow {
   void connectWorker();
   void restoreLayout();
   void onPacket(const DisplayPacketPtr& packet);
+  void refreshReadouts();  // results text, status bar, histogram and stage times
   void onSettingsEdited();
   void showError(const QString& message);
   void showInfo(const QString& message);
@@ -104,9 +107,11 @@ class MainWindow : public QMainWindow {
   QLabel* status_source_ = nullptr;
   QLabel* status_rate_ = nullptr;
   QLabel* status_state_ = nullptr;
-  QTimer* chart_timer_ = nullptr;
+  static constexpr int kReadoutMs = 100;
+  QTimer* readout_timer_ = nullptr;
+  QElapsedTimer readout_clock_;
   DisplayPacketPtr latest_;
-  bool charts_dirty_ = false;
+  bool readouts_dirty_ = false;
   QString last_error_;
   QString data_out_path_;
   QString last_dir_;

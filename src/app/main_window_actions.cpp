@@ -95,9 +95,6 @@ void MainWindow::openDialog(bool folder) {
   } else {
     paths = QFileDialog::getOpenFileNames(this, tr("Open images"), last_dir_, kImageFilter);
   }
-  if (paths.isEmpty()) return;
-  last_dir_ = QFileInfo(paths.front()).absolutePath();
-  for (const QString& p : paths) recent_->add(p);
   openPaths(paths);
 }
 

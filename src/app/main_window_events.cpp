@@ -4,14 +4,12 @@
 #include <QComboBox>
 #include <QDragEnterEvent>
 #include <QDropEvent>
-#include <QFileInfo>
 #include <QKeyEvent>
 #include <QLineEdit>
 #include <QMimeData>
 
 #include "app/control_panel.h"
 #include "app/main_window.h"
-#include "app/recent_files.h"
 #include "app/source_panel.h"
 #include "app/virtual_keys.h"
 #include "app/worker.h"
@@ -49,8 +47,6 @@ void MainWindow::dropEvent(QDropEvent* event) {
   const QStringList paths = localPaths(event->mimeData());
   if (paths.isEmpty()) return;
   event->acceptProposedAction();
-  last_dir_ = QFileInfo(paths.front()).absolutePath();
-  for (const QString& p : paths) recent_->add(p);
   openPaths(paths);
 }
 
