@@ -24,14 +24,16 @@ constexpr std::size_t kConsensusScorePoints = 128;
 
 void summarise(std::span<const EdgePixel> path, PathSummary& s) {
   int minx = path[0].x, maxx = minx, miny = path[0].y, maxy = miny;
-  double sx = 0, sy = 0, sxx = 0, syy = 0, sgx = 0, sgy = 0, sgp = 0;
-  const double ox = path[0].x, oy = path[0].y;  // origin near the path: no cancellation
+  // Exact integer sums about the first pixel (no cancellation; |offsets| < 2^15 and
+  // fewer than 2^31 pixels keep them below 2^63).
+  std::int64_t sx = 0, sy = 0, sxx = 0, syy = 0, sgx = 0, sgy = 0, sgp = 0;
+  const int ox = path[0].x, oy = path[0].y;
   for (const EdgePixel& p : path) {
     minx = std::min<int>(minx, p.x);
     maxx = std::max<int>(maxx, p.x);
     miny = std::min<int>(miny, p.y);
     maxy = std::max<int>(maxy, p.y);
-    const double x = p.x - ox, y = p.y - oy;
+    const std::int64_t x = p.x - ox, y = p.y - oy;
     sx += x;
     sy += y;
     sxx += x * x;
@@ -41,14 +43,16 @@ void summarise(std::span<const EdgePixel> path, PathSummary& s) {
     sgp += p.gx * x + p.gy * y;
   }
   const double n = static_cast<double>(path.size());
-  const double mx = sx / n, my = sy / n;
+  const double mx = static_cast<double>(sx) / n, my = static_cast<double>(sy) / n;
   s.bbox = cv::Rect(minx, miny, maxx - minx + 1, maxy - miny + 1);
   s.cx = ox + mx;
   s.cy = oy + my;
-  s.rms_radius = std::sqrt(std::max(0.0, sxx / n - mx * mx + syy / n - my * my));
-  s.polarity = sgp - mx * sgx - my * sgy;  // sum of g . (p - centroid)
+  s.rms_radius = std::sqrt(std::max(0.0, static_cast<double>(sxx + syy) / n - mx * mx - my * my));
+  s.polarity = static_cast<double>(sgp) - mx * static_cast<double>(sgx) - my * static_cast<double>(sgy);  // sum of g . (p - centroid)
   s.fit_status = Status::TooFewPoints;
+  s.fitted = false;
   s.accepted = false;
+  s.candidate = false;
   s.bennett = BennettResult{};
   s.trace = EllipseTrace{};
 }
@@ -58,39 +62,59 @@ bool errorAccepted(const EllipseOptions& o, const EllipseFit& fit, double mean_s
                                                        : mean_sampson_px <= o.max_sampson_distance_px;
 }
 
-// Fits and classifies every path long enough; fills ws.paths.
-void classify(const EllipseOptions& o, const Paths& paths, cv::Size image, EllipseWorkspace& ws) {
+bool isDarkSpotPath(const PathSummary& s, std::size_t pixels) {
+  return pixels >= kMinSpotPixels && s.polarity > 0.0;
+}
+
+// Summarises every path into ws.paths (one cheap pass; no fit yet).
+void summariseAll(const Paths& paths, EllipseWorkspace& ws) {
   const std::size_t count = paths.pathCount();
   ws.paths.resize(count);
+  ws.dark.clear();
   for (std::size_t i = 0; i < count; ++i) {
     const auto path = paths.path(i);
-    PathSummary& s = ws.paths[i];
     if (path.empty()) {
-      s = PathSummary{};
+      ws.paths[i] = PathSummary{};
       continue;
     }
-    summarise(path, s);
-    if (path.size() < static_cast<std::size_t>(std::max(o.min_path_pixels, 6))) continue;
-    ConicMoments m;
-    m.add(path);
-    s.fit_status = fitEllipse(m, s.fit);
-    if (o.method == EllipseMethod::Bennett) {
-      if (!ok(s.fit_status)) continue;  // no ellipse parameters for this path
-      if (!ok(bennettAccumulate(path, o.bennett_max_points, ws.bennett, s.bennett))) continue;
-      s.accepted = bennettAccepts(o, s.bennett);
-      if (s.accepted) traceEllipse(s.fit, path, o.trace_inlier_px, image, s.trace);
-      continue;
-    }
-    if (!ok(s.fit_status)) continue;
-    // Screens that need no pass over the points.
-    if (o.accept_rule == FitAcceptRule::RelativeError && s.fit.relative_error > o.max_relative_error) continue;
-    if (o.accept_rule == FitAcceptRule::SampsonDistance &&
-        s.fit.taubin_px > kTaubinScreen * o.max_sampson_distance_px)
-      continue;
-    traceEllipse(s.fit, path, o.trace_inlier_px, image, s.trace);
-    s.fit.sampson_px = s.trace.mean_sampson_px;
-    s.accepted = fitAccepted(o, s.fit, s.trace, o.min_traced_fraction);
+    summarise(path, ws.paths[i]);
+    if (isDarkSpotPath(ws.paths[i], path.size())) ws.dark.push_back(i);
   }
+}
+
+// Fits path i once, if long enough. With the direct fit a path that passes the error
+// screens (no pass over the points) becomes a candidate, decided by traceCandidate;
+// Bennett decides here.
+void fitPath(const EllipseOptions& o, const Paths& paths, std::size_t i, cv::Size image, EllipseWorkspace& ws) {
+  PathSummary& s = ws.paths[i];
+  if (s.fitted) return;
+  s.fitted = true;
+  const auto path = paths.path(i);
+  if (path.size() < static_cast<std::size_t>(std::max(o.min_path_pixels, 6))) return;
+  ConicMoments m;
+  m.add(path);
+  s.fit_status = fitEllipse(m, s.fit);
+  if (!ok(s.fit_status)) return;  // no ellipse parameters for this path
+  if (o.method == EllipseMethod::Bennett) {
+    if (!ok(bennettAccumulate(path, o.bennett_max_points, ws.bennett, s.bennett))) return;
+    s.accepted = bennettAccepts(o, s.bennett);
+    if (s.accepted) traceEllipse(s.fit, path, o.trace_inlier_px, image, s.trace);
+    return;
+  }
+  if (o.accept_rule == FitAcceptRule::RelativeError && s.fit.relative_error > o.max_relative_error) return;
+  if (o.accept_rule == FitAcceptRule::SampsonDistance && s.fit.taubin_px > kTaubinScreen * o.max_sampson_distance_px)
+    return;
+  s.candidate = true;
+}
+
+// The direct fit's decision on a candidate: the pass over its points.
+bool traceCandidate(const EllipseOptions& o, std::span<const EdgePixel> path, cv::Size image, PathSummary& s) {
+  if (!s.candidate) return s.accepted;
+  s.candidate = false;
+  traceEllipse(s.fit, path, o.trace_inlier_px, image, s.trace);
+  s.fit.sampson_px = s.trace.mean_sampson_px;
+  s.accepted = fitAccepted(o, s.fit, s.trace, o.min_traced_fraction);
+  return s.accepted;
 }
 
 TargetDetection toDetection(const PathSummary& s, std::size_t index) {
@@ -116,22 +140,17 @@ Eigen::Vector2d unitFrame(const Ellipse& e, double x, double y) {
   return {(dx * c + dy * s) / e.a, (-dx * s + dy * c) / e.b};
 }
 
-bool isDarkSpotPath(const PathSummary& s, std::size_t pixels) {
-  return pixels >= kMinSpotPixels && s.polarity > 0.0;
-}
-
 // Dark closed paths of spot size inside `e` (other than `self`) into ws.spots; true when
 // there are exactly two and they sit where the target's spots sit. spots[0] is then the
 // centre spot.
-bool findSpots(const EllipseOptions& o, const TargetGeometry& g, const Paths& paths, const Ellipse& e,
+bool findSpots(const EllipseOptions& o, const TargetGeometry& g, const Ellipse& e,
                std::size_t self, EllipseWorkspace& ws, std::array<std::size_t, 2>& spots) {
   ws.spots.clear();
   const double radius = std::sqrt(e.a * e.b);
   const double expected = g.spot_radius_mm / g.radius_mm * radius;
-  for (std::size_t j = 0; j < ws.paths.size(); ++j) {
+  for (const std::size_t j : ws.dark) {
     if (j == self) continue;
     const PathSummary& s = ws.paths[j];
-    if (!isDarkSpotPath(s, paths.path(j).size())) continue;
     if (s.rms_radius < expected / kSpotSizeFactor || s.rms_radius > expected * kSpotSizeFactor) continue;
     if (unitFrame(e, s.cx, s.cy).norm() >= 1.0) continue;
     ws.spots.push_back(j);
@@ -154,15 +173,15 @@ bool findSpots(const EllipseOptions& o, const TargetGeometry& g, const Paths& pa
 
 // Could this failed path be an occluded target? It must have a white interior and hold
 // two dark paths of spot size within its bounding box.
-bool mayHoldSpots(const TargetGeometry& g, const Paths& paths, std::size_t i, const EllipseWorkspace& ws) {
+bool mayHoldSpots(const TargetGeometry& g, std::size_t i, const EllipseWorkspace& ws) {
   const PathSummary& s = ws.paths[i];
   if (!(s.polarity < 0.0)) return false;
   const double radius = 0.5 * std::sqrt(static_cast<double>(s.bbox.width) * s.bbox.height);
   const double expected = g.spot_radius_mm / g.radius_mm * radius;
   int found = 0;
-  for (std::size_t j = 0; j < ws.paths.size(); ++j) {
+  for (const std::size_t j : ws.dark) {
     const PathSummary& t = ws.paths[j];
-    if (j == i || !isDarkSpotPath(t, paths.path(j).size())) continue;
+    if (j == i) continue;
     if (t.rms_radius < expected / (2.0 * kSpotSizeFactor) || t.rms_radius > expected * 2.0 * kSpotSizeFactor)
       continue;
     if (!s.bbox.contains(cv::Point(static_cast<int>(t.cx), static_cast<int>(t.cy)))) continue;
@@ -171,9 +190,9 @@ bool mayHoldSpots(const TargetGeometry& g, const Paths& paths, std::size_t i, co
   return found >= 2;
 }
 
-bool holdsDarkPath(const Paths& paths, const Ellipse& e, std::size_t self, const EllipseWorkspace& ws) {
-  for (std::size_t j = 0; j < ws.paths.size(); ++j) {
-    if (j == self || !isDarkSpotPath(ws.paths[j], paths.path(j).size())) continue;
+bool holdsDarkPath(const Ellipse& e, std::size_t self, const EllipseWorkspace& ws) {
+  for (const std::size_t j : ws.dark) {
+    if (j == self) continue;
     if (ws.paths[j].rms_radius < std::sqrt(e.a * e.b) && unitFrame(e, ws.paths[j].cx, ws.paths[j].cy).norm() < 1.0)
       return true;
   }
@@ -191,9 +210,11 @@ bool fitAccepted(const EllipseOptions& o, const EllipseFit& fit, const EllipseTr
 Status detectEllipses(const EllipseOptions& o, const Paths& paths, cv::Size image, EllipseWorkspace& ws,
                       std::vector<TargetDetection>& out) {
   out.clear();
-  classify(o, paths, image, ws);
-  for (std::size_t i = 0; i < ws.paths.size(); ++i)
-    if (ws.paths[i].accepted) out.push_back(toDetection(ws.paths[i], i));
+  summariseAll(paths, ws);
+  for (std::size_t i = 0; i < ws.paths.size(); ++i) {
+    fitPath(o, paths, i, image, ws);
+    if (traceCandidate(o, paths.path(i), image, ws.paths[i])) out.push_back(toDetection(ws.paths[i], i));
+  }
   return out.empty() ? Status::NoTarget : Status::Ok;
 }
 
@@ -272,12 +293,19 @@ Status fitEllipseRobust(const EllipseOptions& o, std::span<const EdgePixel> path
 Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Paths& paths, cv::Size image,
                     EllipseWorkspace& ws, std::vector<TargetDetection>& out) {
   out.clear();
-  classify(o, paths, image, ws);
+  summariseAll(paths, ws);
+  // Only a white path with two dark paths of spot size inside its box can be the target:
+  // only such paths are fitted first, and only if their ellipse holds the spots is its
+  // contour traced.
   std::array<std::size_t, 2> spots;
+  const std::size_t min_pixels = static_cast<std::size_t>(std::max(o.min_path_pixels, 6));
   for (std::size_t i = 0; i < ws.paths.size(); ++i) {
-    const PathSummary& s = ws.paths[i];
-    if (!s.accepted || !(s.polarity < 0.0)) continue;
-    if (!findSpots(o, g, paths, s.fit.ellipse, i, ws, spots)) continue;
+    PathSummary& s = ws.paths[i];
+    if (paths.path(i).size() < min_pixels || !mayHoldSpots(g, i, ws)) continue;
+    fitPath(o, paths, i, image, ws);
+    if (!(s.accepted || s.candidate)) continue;
+    if (!findSpots(o, g, s.fit.ellipse, i, ws, spots)) continue;
+    if (!traceCandidate(o, paths.path(i), image, s)) continue;
     TargetDetection d = toDetection(s, i);
     d.spot_paths = spots;
     d.spots_found = true;
@@ -287,12 +315,12 @@ Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Path
     for (std::size_t i = 0; i < ws.paths.size(); ++i) {
       PathSummary& s = ws.paths[i];
       const auto path = paths.path(i);
-      if (s.accepted || path.size() < static_cast<std::size_t>(std::max(o.min_path_pixels, 6))) continue;
-      if (!mayHoldSpots(g, paths, i, ws)) continue;
+      if (!s.fitted || s.accepted) continue;  // fitted above: the paths that may hold spots
+      if (s.candidate && traceCandidate(o, path, image, s)) continue;  // accepted: holds no spots
       EllipseFit fit;
       EllipseTrace trace;
       if (!ok(fitEllipseRobust(o, path, image, ws, fit, trace))) continue;
-      if (!findSpots(o, g, paths, fit.ellipse, i, ws, spots)) continue;
+      if (!findSpots(o, g, fit.ellipse, i, ws, spots)) continue;
       s.fit = fit;
       s.trace = trace;
       TargetDetection d = toDetection(s, i);
@@ -312,9 +340,11 @@ Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Path
   bool best_holds = false;
   double best_key = 0.0;
   for (std::size_t i = 0; i < ws.paths.size(); ++i) {
-    const PathSummary& s = ws.paths[i];
-    if (!s.accepted || !(s.polarity < 0.0)) continue;
-    const bool holds = holdsDarkPath(paths, s.fit.ellipse, i, ws);
+    PathSummary& s = ws.paths[i];
+    if (!(s.polarity < 0.0)) continue;
+    fitPath(o, paths, i, image, ws);
+    if (!traceCandidate(o, paths.path(i), image, s)) continue;
+    const bool holds = holdsDarkPath(s.fit.ellipse, i, ws);
     double key;
     if (o.method == EllipseMethod::Bennett) key = -s.bennett.score;
     else if (o.accept_rule == FitAcceptRule::RelativeError) key = s.fit.relative_error;

@@ -68,6 +68,8 @@ struct PathSummary {
   EllipseFit fit;
   EllipseTrace trace;
   BennettResult bennett;
+  bool fitted = false;     // fit attempted (paths are fitted only when needed)
+  bool candidate = false;  // fitted and within the error limit, contour not traced yet
   bool accepted = false;
 };
 
@@ -76,6 +78,7 @@ struct EllipseWorkspace {
   std::vector<PathSummary> paths;
   BennettWorkspace bennett;
   std::vector<EdgePixel> inliers;
+  std::vector<std::size_t> dark;   // closed paths around dark regions: spot candidates
   std::vector<std::size_t> spots;
   std::mt19937 rng;
 };

@@ -1,5 +1,6 @@
 #include "core/ellipse/direct_fit.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -38,6 +39,32 @@ inline void accumulate(std::array<double, 15>& s, double x, double y) {
   s[14] += y2 * y2;
 }
 
+// Sums of x^i y^j in 64-bit integers (x, y the offsets of pixels from the origin).
+struct PixelSums {
+  std::array<std::int64_t, 15> sum{};
+  void add(std::int64_t x, std::int64_t y) {
+    const std::int64_t x2 = x * x, xy = x * y, y2 = y * y;
+    sum[0] += 1;
+    sum[1] += x;
+    sum[2] += y;
+    sum[3] += x2;
+    sum[4] += xy;
+    sum[5] += y2;
+    sum[6] += x2 * x;
+    sum[7] += x2 * y;
+    sum[8] += x * y2;
+    sum[9] += y2 * y;
+    sum[10] += x2 * x2;
+    sum[11] += x2 * xy;
+    sum[12] += x2 * y2;
+    sum[13] += xy * y2;
+    sum[14] += y2 * y2;
+  }
+};
+// (2^12)^4 * 2^12 = 2^60 < 2^63.
+constexpr int kMomentReach = 1 << 12;
+constexpr std::size_t kMomentBlock = std::size_t{1} << 12;
+
 // Points whose best unconstrained conic is a hyperbola or parabola that fits this many
 // times better (algebraic residual) than the best ellipse are reported as NotAnEllipse.
 // Digitised ellipse arcs stay well below this ratio (tests: partial arcs).
@@ -63,11 +90,29 @@ void ConicMoments::add(std::span<const EdgePixel> points) {
     origin_x = points[0].x;
     origin_y = points[0].y;
   }
-  // Separate accumulators let the additions of consecutive points overlap.
-  std::array<double, 15> s{};
-  const double ox = origin_x, oy = origin_y;
-  for (const EdgePixel& p : points) accumulate(s, p.x - ox, p.y - oy);
-  for (int k = 0; k < 15; ++k) sum[k] += s[k];
+  const int ox = static_cast<int>(origin_x), oy = static_cast<int>(origin_y);
+  if (ox != origin_x || oy != origin_y) {  // a fractional origin from add(x, y)
+    for (const EdgePixel& p : points) add(p.x, p.y);
+    return;
+  }
+  // Exact integer sums over blocks of kMomentBlock points with offsets below
+  // kMomentReach: every sum stays below 2^63. Farther points (images wider than
+  // kMomentReach) take the floating-point sums.
+  for (std::size_t start = 0; start < points.size(); start += kMomentBlock) {
+    const std::size_t end = std::min(points.size(), start + kMomentBlock);
+    int lo = 0, hi = 0;
+    for (std::size_t k = start; k < end; ++k) {
+      lo = std::min({lo, points[k].x - ox, points[k].y - oy});
+      hi = std::max({hi, points[k].x - ox, points[k].y - oy});
+    }
+    if (lo <= -kMomentReach || hi >= kMomentReach) {
+      for (std::size_t k = start; k < end; ++k) accumulate(sum, points[k].x - ox, points[k].y - oy);
+      continue;
+    }
+    PixelSums s;
+    for (std::size_t k = start; k < end; ++k) s.add(points[k].x - ox, points[k].y - oy);
+    for (int k = 0; k < 15; ++k) sum[k] += static_cast<double>(s.sum[k]);
+  }
   count += points.size();
 }
 
@@ -126,33 +171,57 @@ Status fitEllipse(const ConicMoments& mom, EllipseFit& fit) {
 
   // The best conic without the ellipse constraint (unit quadratic part): if the points
   // leave more than one conic free, the fit is degenerate.
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> sym(M);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> sym;
+  sym.computeDirect(M);
   const Eigen::Vector3d sym_values = sym.eigenvalues();
   if (sym_values(1) <= 1e-12 * std::max(trace, std::numeric_limits<double>::min()))
     return Status::DegenerateFit;
 
-  // M a1 = lambda C1 a1 with C1 the upper 3x3 block of C (eq. 2.34): eigenvectors of
-  // C1^-1 M; the solution is the one with 4ac - b^2 > 0.
-  Eigen::Matrix3d CinvM;
-  CinvM.row(0) = 0.5 * M.row(2);
-  CinvM.row(1) = -M.row(1);
-  CinvM.row(2) = 0.5 * M.row(0);
-  Eigen::EigenSolver<Eigen::Matrix3d> es(CinvM);
-  if (es.info() != Eigen::Success) return Status::DegenerateFit;
-  int best = -1;
-  double best_residual = std::numeric_limits<double>::infinity();
+  // M a1 = lambda C1 a1 with C1 the upper 3x3 block of C (eq. 2.34); the solution is the
+  // eigenvector with 4ac - b^2 > 0, the one positive lambda.
   Eigen::Vector3d a1;
-  for (int k = 0; k < 3; ++k) {
-    if (std::abs(es.eigenvalues()(k).imag()) > 1e-9 * std::abs(es.eigenvalues()(k).real()) + 1e-300)
-      continue;
-    const Eigen::Vector3d v = es.eigenvectors().col(k).real();
+  int best = -1;
+  if (sym_values(0) > 1e-8 * trace) {
+    // M positive definite (every real contour): with M = L L^T the pencil becomes the
+    // symmetric L^-1 C1 L^-T y = (1 / lambda) y, a1 = L^-T y, and the solution belongs
+    // to its largest eigenvalue.
+    const Eigen::LLT<Eigen::Matrix3d> llt(M);
+    Eigen::Matrix3d C1;
+    C1 << 0, 0, 2, 0, -1, 0, 2, 0, 0;
+    const auto L = llt.matrixL();
+    const Eigen::Matrix3d B = L.solve(C1);                         // L^-1 C1
+    Eigen::Matrix3d A = L.solve(B.transpose()).transpose();        // L^-1 C1 L^-T
+    A = 0.5 * (A + A.transpose()).eval();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pencil;
+    pencil.computeDirect(A);
+    const Eigen::Vector3d v = llt.matrixU().solve(Eigen::Vector3d(pencil.eigenvectors().col(2)));
     const double cond = 4.0 * v(0) * v(2) - v(1) * v(1);
-    if (!(cond > 1e-12 * v.squaredNorm())) continue;
-    const double residual = v.dot(M * v) / cond;
-    if (residual < best_residual) {
-      best_residual = residual;
-      best = k;
+    if (llt.info() == Eigen::Success && pencil.eigenvalues()(2) > 0.0 && cond > 1e-12 * v.squaredNorm()) {
       a1 = v / std::sqrt(cond);  // a^T C a = 1 (eq. 2.37)
+      best = 2;
+    }
+  }
+  if (best < 0) {
+    // Points on an exact conic (M singular): eigenvectors of C1^-1 M.
+    Eigen::Matrix3d CinvM;
+    CinvM.row(0) = 0.5 * M.row(2);
+    CinvM.row(1) = -M.row(1);
+    CinvM.row(2) = 0.5 * M.row(0);
+    Eigen::EigenSolver<Eigen::Matrix3d> es(CinvM);
+    if (es.info() != Eigen::Success) return Status::DegenerateFit;
+    double best_residual = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      if (std::abs(es.eigenvalues()(k).imag()) > 1e-9 * std::abs(es.eigenvalues()(k).real()) + 1e-300)
+        continue;
+      const Eigen::Vector3d v = es.eigenvectors().col(k).real();
+      const double cond = 4.0 * v(0) * v(2) - v(1) * v(1);
+      if (!(cond > 1e-12 * v.squaredNorm())) continue;
+      const double residual = v.dot(M * v) / cond;
+      if (residual < best_residual) {
+        best_residual = residual;
+        best = k;
+        a1 = v / std::sqrt(cond);
+      }
     }
   }
   if (best < 0) return Status::NotAnEllipse;
@@ -281,33 +350,45 @@ constexpr int kArcSamples = 128;  // parametric samples of the arc-length table
 constexpr int kMaxArcs = 512;
 constexpr double kArcLengthPx = 3.0;
 
-// Arc length of the ellipse from parametric angle 0, tabulated at 2*pi*k/kArcSamples.
+// atan2 to within 1e-5 rad, several times cheaper than std::atan2: enough to put a
+// point on a 3-pixel arc.
+inline double fastAtan2(double y, double x) {
+  const double ax = std::abs(x), ay = std::abs(y);
+  const double hi = std::max(ax, ay), lo = std::min(ax, ay);
+  if (!(hi > 0.0)) return 0.0;
+  const double q = lo / hi, q2 = q * q;  // atan(q), q in [0, 1]: odd minimax polynomial
+  double r = q * (0.99997726 + q2 * (-0.33262347 + q2 * (0.19354346 + q2 * (-0.11643287 + q2 * (0.05265332 + q2 * -0.01172120)))));
+  if (ay > ax) r = 0.5 * kPi - r;
+  if (x < 0.0) r = kPi - r;
+  return y < 0.0 ? -r : r;
+}
+
+// Points of the ellipse (a cos t, b sin t) and the arc length from t = 0, tabulated at
+// t = 2 pi k / kArcSamples (the angles by a rotation recurrence, no trigonometry).
 struct ArcTable {
-  std::array<double, kArcSamples + 1> s{};
+  std::array<double, kArcSamples + 1> s{}, x{}, y{};
   double perimeter = 0.0;
 
   ArcTable(double a, double b) {
-    double prev_x = a, prev_y = 0.0;
+    const double step_c = std::cos(kTwoPi / kArcSamples), step_s = std::sin(kTwoPi / kArcSamples);
+    double c = 1.0, sn = 0.0;
+    x[0] = a;
+    y[0] = 0.0;
     for (int k = 1; k <= kArcSamples; ++k) {
-      const double t = kTwoPi * k / kArcSamples;
-      const double x = a * std::cos(t), y = b * std::sin(t);
-      s[k] = s[k - 1] + std::hypot(x - prev_x, y - prev_y);
-      prev_x = x;
-      prev_y = y;
+      const double c2 = c * step_c - sn * step_s;
+      sn = sn * step_c + c * step_s;
+      c = c2;
+      x[k] = a * c;
+      y[k] = b * sn;
+      const double dx = x[k] - x[k - 1], dy = y[k] - y[k - 1];
+      s[k] = s[k - 1] + std::sqrt(dx * dx + dy * dy);
     }
     perimeter = s[kArcSamples];
   }
   double arcAt(double t) const {  // t in [0, 2 pi)
-    const double f = t / kTwoPi * kArcSamples;
-    const int k = std::min(kArcSamples - 1, static_cast<int>(f));
+    const double f = t * (kArcSamples / kTwoPi);
+    const int k = std::clamp(static_cast<int>(f), 0, kArcSamples - 1);
     return s[k] + (f - k) * (s[k + 1] - s[k]);
-  }
-  double angleAt(double arc) const {
-    int k = 0;
-    while (k < kArcSamples - 1 && s[k + 1] < arc) ++k;
-    const double span = s[k + 1] - s[k];
-    const double f = span > 0.0 ? (arc - s[k]) / span : 0.0;
-    return kTwoPi * (k + f) / kArcSamples;
   }
 };
 
@@ -319,9 +400,11 @@ void trace(const EllipseFit& fit, const Points& points, double inlier_px, cv::Si
   if (!(e.a > 0.0) || !(e.b > 0.0)) return;
   const ArcTable table(e.a, e.b);
   const int arcs = std::clamp(static_cast<int>(std::ceil(table.perimeter / kArcLengthPx)), 8, kMaxArcs);
+  const double arcs_per_px = arcs / table.perimeter;
   std::array<unsigned char, kMaxArcs> traced{};
   const double th = e.angle_deg * kPi / 180.0;
   const double cs = std::cos(th), sn = std::sin(th);
+  const double ia = 1.0 / e.a, ib = 1.0 / e.b;
   const Conic& c = fit.normalised;
   const double is = 1.0 / fit.scale;
   const double ox = fit.origin.x(), oy = fit.origin.y();
@@ -346,25 +429,34 @@ void trace(const EllipseFit& fit, const Points& points, double inlier_px, cv::Si
     // raw parametric angle of an off-curve point is far off near the ends of a thin ellipse.
     const double step = f * ig * ig * fit.scale;
     const double dx = x - step * gu - e.cx, dy = y - step * gv - e.cy;
-    double t = std::atan2((-dx * sn + dy * cs) / e.b, (dx * cs + dy * sn) / e.a);
+    double t = fastAtan2((-dx * sn + dy * cs) * ib, (dx * cs + dy * sn) * ia);
     if (t < 0.0) t += kTwoPi;
-    const int arc = std::min(arcs - 1, static_cast<int>(table.arcAt(t) / table.perimeter * arcs));
-    traced[arc] = 1;
+    traced[std::min(arcs - 1, static_cast<int>(table.arcAt(t) * arcs_per_px))] = 1;
   }
   out.mean_sampson_px = points.empty() ? 0.0 : total / static_cast<double>(points.size());
-  int n_traced = 0, n_observable = 0;
-  for (int k = 0; k < arcs; ++k) {
-    n_traced += traced[k];
-    if (image.empty()) {
-      ++n_observable;
-      continue;
-    }
-    const double t = table.angleAt((k + 0.5) * table.perimeter / arcs);
-    const double ex = e.a * std::cos(t), ey = e.b * std::sin(t);
-    const double px = e.cx + ex * cs - ey * sn, py = e.cy + ex * sn + ey * cs;
-    if (px >= -0.5 && py >= -0.5 && px <= image.width - 0.5 && py <= image.height - 0.5) ++n_observable;
-  }
+  int n_traced = 0;
+  for (int k = 0; k < arcs; ++k) n_traced += traced[k];
   out.traced = static_cast<double>(n_traced) / arcs;
+  // Observable: the middle of each arc inside the image (all of them when the ellipse's
+  // bounding box is).
+  const double half_w = std::sqrt(e.a * e.a * cs * cs + e.b * e.b * sn * sn);
+  const double half_h = std::sqrt(e.a * e.a * sn * sn + e.b * e.b * cs * cs);
+  const double lo = -0.5, hi_x = image.width - 0.5, hi_y = image.height - 0.5;
+  if (image.empty() || (e.cx - half_w >= lo && e.cy - half_h >= lo && e.cx + half_w <= hi_x && e.cy + half_h <= hi_y)) {
+    out.observable = 1.0;
+    return;
+  }
+  int n_observable = 0, j = 0;
+  for (int k = 0; k < arcs; ++k) {
+    const double arc = (k + 0.5) / arcs_per_px;
+    while (j < kArcSamples - 1 && table.s[j + 1] < arc) ++j;
+    const double span = table.s[j + 1] - table.s[j];
+    const double f = span > 0.0 ? (arc - table.s[j]) / span : 0.0;
+    const double ex = table.x[j] + f * (table.x[j + 1] - table.x[j]);
+    const double ey = table.y[j] + f * (table.y[j + 1] - table.y[j]);
+    const double px = e.cx + ex * cs - ey * sn, py = e.cy + ex * sn + ey * cs;
+    n_observable += px >= lo && py >= lo && px <= hi_x && py <= hi_y;
+  }
   out.observable = static_cast<double>(n_observable) / arcs;
 }
 

@@ -1,0 +1,163 @@
+// Ellipse detection (thesis 2.6, table 2.6): the whole stage per frame with the direct
+// fit and with Bennett's per-path accumulator, and, on the same paths, the fit alone
+// next to OpenCV's cv::fitEllipseDirect, one core. Frames: ten cluttered 640x480
+// Virtual-source grey frames (samples 0-9, like the rows of table 2.6): the target at
+// ten poses among 6 to 42 white clutter bars and rectangles, noise, blur and uneven
+// lighting (the disk the brightest object), binarized by AT-Mod, Laplace edges and CN1
+// paths (outside the timing).
+//   build/tests/bench/bench_ellipse --benchmark_min_time=0.2 --benchmark_repetitions=5
+// Each method runs per frame (/frame:0 ... /frame:9) and over all ten in turn
+// (frame:-1; its per_frame is the mean time per frame).
+#include <benchmark/benchmark.h>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "core/connectivity/connectivity.h"
+#include "core/edges/edges.h"
+#include "core/ellipse/detect.h"
+#include "core/segmentation/histogram.h"
+#include "core/segmentation/threshold.h"
+#include "core/source/virtual_renderer.h"
+
+namespace imagepro {
+namespace {
+
+constexpr int kFrames = 10;
+constexpr int kAllFrames = -1;
+const cv::Size kImage(640, 480);
+
+const std::vector<Paths>& frames() {
+  static const std::vector<Paths> f = [] {
+    cv::setNumThreads(1);  // one core for OpenCV too
+    const CameraModel camera;
+    const TargetGeometry target;
+    const Pose poses[kFrames] = {{0, 0, 0, 0, 0, 800},          {20, -15, 30, 120, -60, 900},
+                                 {-35, 10, -80, -150, 80, 1200}, {10, 40, 150, 60, 100, 650},
+                                 {0, -50, 10, -200, -120, 1500}, {45, 0, 0, 0, 0, 1000},
+                                 {-15, -25, -170, 180, 30, 700}, {5, 5, 60, -40, -150, 1800},
+                                 {30, 30, 90, 250, 170, 900},    {-5, 20, -30, 20, 10, 450}};
+    std::vector<Paths> out;
+    for (int i = 0; i < kFrames; ++i) {
+      VirtualSceneOptions scene;
+      scene.mode = RenderMode::Grey;
+      scene.clutter = 6 + 4 * i;
+      scene.seed = 300 + static_cast<unsigned>(i);
+      scene.noise_sigma = 2.0 + i % 3 * 2.0;
+      scene.blur_sigma_px = 0.5 + 0.2 * (i % 4);
+      scene.illumination_gradient = 0.1 * (i % 4);
+      scene.white_level = 180 + 6 * i;
+      scene.black_level = 12 + 2 * i;
+      scene.background_level = 60 + 8 * i;
+      cv::Mat grey, binary;
+      renderTarget(camera, target, scene, poses[i], grey, static_cast<std::uint64_t>(i));
+      Histogram h;
+      computeHistogram(grey, h);
+      int t = 128;
+      if (!ok(computeThreshold(ThresholdOptions{ThresholdMethod::AtMod, 128}, h, t))) t = 128;
+      binarize(grey, t, binary);
+      EdgeList edges;
+      detectEdgesLaplace(binary, edges);
+      Paths paths;
+      ConnectivityWorkspace ws;
+      connectCN1(edges, binary.size(), paths, ws);
+      out.push_back(std::move(paths));
+    }
+    return out;
+  }();
+  return f;
+}
+
+std::size_t fittedPaths(const Paths& p) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < p.pathCount(); ++i) n += p.path(i).size() >= std::size_t(EllipseOptions{}.min_path_pixels);
+  return n;
+}
+
+template <class Step>
+void runFrames(benchmark::State& state, Step step) {
+  const int only = static_cast<int>(state.range(0));
+  int i = 0;
+  for (auto _ : state) {
+    step(only == kAllFrames ? i : only);
+    i = (i + 1) % kFrames;
+  }
+  state.counters["per_frame"] =
+      benchmark::Counter(1.0, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  if (only != kAllFrames) {
+    const Paths& p = frames()[static_cast<std::size_t>(only)];
+    state.counters["edge_pixels"] = static_cast<double>(p.pixels.size());
+    state.counters["paths"] = static_cast<double>(p.pathCount());
+    state.counters["fitted"] = static_cast<double>(fittedPaths(p));
+  }
+}
+
+void detectStage(benchmark::State& state, EllipseMethod method) {
+  const auto& f = frames();
+  EllipseOptions o;
+  o.method = method;
+  const TargetGeometry g;
+  EllipseWorkspace ws;
+  std::vector<TargetDetection> out;
+  int found = 0, runs = 0;
+  runFrames(state, [&](int i) {
+    found += ok(detectTarget(o, g, f[static_cast<std::size_t>(i)], kImage, ws, out)) && out[0].spots_found;
+    ++runs;
+    benchmark::DoNotOptimize(out.data());
+  });
+  state.counters["target_found"] = runs ? double(found) / runs : 0.0;
+}
+
+void DirectFitStage(benchmark::State& state) { detectStage(state, EllipseMethod::DirectFit); }
+void BennettStage(benchmark::State& state) { detectStage(state, EllipseMethod::Bennett); }
+
+// The fit alone (moments, Halir-Flusser solve, ellipse parameters) on every path of at
+// least min_path_pixels: the work cv::fitEllipseDirect does.
+void FitOnly(benchmark::State& state) {
+  const auto& f = frames();
+  const std::size_t min_pixels = std::size_t(EllipseOptions{}.min_path_pixels);
+  EllipseFit fit;
+  runFrames(state, [&](int i) {
+    const Paths& p = f[static_cast<std::size_t>(i)];
+    for (std::size_t k = 0; k < p.pathCount(); ++k) {
+      if (p.path(k).size() < min_pixels) continue;
+      ConicMoments m;
+      m.add(p.path(k));
+      benchmark::DoNotOptimize(fitEllipse(m, fit));
+    }
+  });
+}
+
+void OpenCvFitEllipseDirect(benchmark::State& state) {
+  const auto& f = frames();
+  const std::size_t min_pixels = std::size_t(EllipseOptions{}.min_path_pixels);
+  std::vector<cv::Point> points;
+  runFrames(state, [&](int i) {
+    const Paths& p = f[static_cast<std::size_t>(i)];
+    for (std::size_t k = 0; k < p.pathCount(); ++k) {
+      const auto path = p.path(k);
+      if (path.size() < min_pixels) continue;
+      points.clear();
+      for (const EdgePixel& e : path) points.emplace_back(e.x, e.y);
+      benchmark::DoNotOptimize(cv::fitEllipseDirect(points));
+    }
+  });
+}
+
+void frameArgs(benchmark::internal::Benchmark* b) {
+  for (int i = 0; i < kFrames; ++i) b->Arg(i);
+  b->Arg(kAllFrames);
+  b->ArgName("frame");
+  b->Unit(benchmark::kMicrosecond);
+}
+
+BENCHMARK(DirectFitStage)->Apply(frameArgs);
+BENCHMARK(BennettStage)->Apply(frameArgs);
+BENCHMARK(FitOnly)->Apply(frameArgs);
+BENCHMARK(OpenCvFitEllipseDirect)->Apply(frameArgs);
+
+}  // namespace
+}  // namespace imagepro
+
+BENCHMARK_MAIN();
