@@ -93,16 +93,18 @@ void MainWindow::buildResultsArea() {
   auto* text_scroll = new QScrollArea;
   text_scroll->setWidget(results_text_);
   text_scroll->setWidgetResizable(true);
-  text_scroll->setMinimumHeight(80);
+  text_scroll->setMinimumWidth(200);
 
   results_area_ = new QWidget;
   results_area_->setObjectName(QStringLiteral("resultsArea"));
-  auto* splitter = new QSplitter(Qt::Vertical);
+  // The two parts of the thesis's results area side by side: the frame, then the numbers.
+  auto* splitter = new QSplitter(Qt::Horizontal);
   splitter->setObjectName(QStringLiteral("resultsSplitter"));
   splitter->addWidget(view_);
   splitter->addWidget(text_scroll);
-  splitter->setStretchFactor(0, 4);
+  splitter->setStretchFactor(0, 3);
   splitter->setStretchFactor(1, 1);
+  splitter->setSizes({900, 380});
   auto* results_layout = new QVBoxLayout(results_area_);
   results_layout->setContentsMargins(0, 0, 0, 0);
   results_layout->addWidget(splitter);
@@ -271,9 +273,11 @@ void MainWindow::restoreLayout() {
   QSettings store;
   if (!restoreGeometry(store.value(QStringLiteral("window/geometry")).toByteArray())) resize(1280, 860);
   if (!restoreState(store.value(QStringLiteral("window/state")).toByteArray())) {
-    // First run: the frame gets most of the room.
-    resizeDocks({findChild<QDockWidget*>(QStringLiteral("controlDock"))}, {300}, Qt::Horizontal);
-    resizeDocks({findChild<QDockWidget*>(QStringLiteral("plotDock"))}, {260}, Qt::Vertical);
+    // First run: the frame gets most of the room (once the window has its size).
+    QTimer::singleShot(0, this, [this] {
+      resizeDocks({findChild<QDockWidget*>(QStringLiteral("controlDock"))}, {300}, Qt::Horizontal);
+      resizeDocks({findChild<QDockWidget*>(QStringLiteral("plotDock"))}, {250}, Qt::Vertical);
+    });
   }
   control_panel_->restoreState(store);
   last_dir_ = store.value(QStringLiteral("lastDirectory")).toString();

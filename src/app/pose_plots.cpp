@@ -56,7 +56,6 @@ PosePlots::PosePlots(QWidget* parent) : QWidget(parent), pause_(new QPushButton(
     p.y = new QValueAxis;
     QFont small = p.chart->font();
     small.setPointSizeF(std::max(6.0, small.pointSizeF() * 0.8));
-    p.x->setLabelFormat(QStringLiteral("%.0f s"));
     p.x->setTickCount(3);
     p.y->setTickCount(3);
     p.y->setLabelFormat(QStringLiteral("%.1f"));
@@ -126,8 +125,13 @@ void PosePlots::clear() {
 void PosePlots::redraw() {
   dirty_ = false;
   const std::size_t first = recorded_.size() > kShown ? recorded_.size() - kShown : 0;
-  const double t0 = first < recorded_.size() ? recorded_[first].timestamp_s : 0.0;
-  const double t1 = recorded_.empty() ? 1.0 : recorded_.back().timestamp_s;
+  // Files carry no capture times: their samples are placed by frame number instead.
+  bool timed = false;
+  for (std::size_t k = first; k < recorded_.size() && !timed; ++k) timed = recorded_[k].timestamp_s != recorded_[first].timestamp_s;
+  const auto x_of = [timed](const PoseSample& s) { return timed ? s.timestamp_s : static_cast<double>(s.index); };
+  const double x0 = first < recorded_.size() ? x_of(recorded_[first]) : 0.0;
+  const double x1 = recorded_.empty() ? 1.0 : x_of(recorded_.back());
+  const bool few = recorded_.size() - first < 30;
   for (int i = 0; i < 6; ++i) {
     Plot& p = plots_[static_cast<std::size_t>(i)];
     QList<QPointF> measured, truth;
@@ -137,26 +141,28 @@ void PosePlots::redraw() {
       const PoseSample& s = recorded_[k];
       if (s.pose) {
         const double v = component(*s.pose, i);
-        measured.append({s.timestamp_s, v});
+        measured.append({x_of(s), v});
         lo = std::min(lo, v);
         hi = std::max(hi, v);
       }
       if (s.truth) {
         const double v = component(*s.truth, i);
-        truth.append({s.timestamp_s, v});
+        truth.append({x_of(s), v});
         lo = std::min(lo, v);
         hi = std::max(hi, v);
       }
     }
     p.measured->replace(measured);
     p.truth->replace(truth);
+    p.measured->setPointsVisible(few);  // a lone file's pose is a point, not a line
     if (lo > hi) {
       lo = -1.0;
       hi = 1.0;
     }
     const double pad = std::max(0.5, 0.08 * (hi - lo));
     p.y->setRange(lo - pad, hi + pad);
-    p.x->setRange(t0, std::max(t1, t0 + 1.0));
+    p.x->setRange(x0 - (timed ? 0.0 : 0.5), std::max(x1, x0 + 1.0) + (timed ? 0.0 : 0.5));
+    p.x->setLabelFormat(timed ? QStringLiteral("%.0f s") : QStringLiteral("#%.0f"));
   }
 }
 

@@ -60,6 +60,7 @@ class FileTest : public QObject {
   void optionChangeReprocessesTheFile();
   void folderIsPlayedInNaturalOrder();
   void missingFileShowsAnError();
+  void droppedFilesAreOpenedAndRemembered();
  private:
   std::unique_ptr<MainWindow> window_;
 };

@@ -8,7 +8,41 @@
 #include "app/frame_view.h"
 #include "app/worker.h"
 
+#include <QThread>
+
+#include <ctime>
+
 namespace imagepro::app::test {
+
+namespace {
+double threadCpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
+}  // namespace
+
+bool ProbeApplication::notify(QObject* receiver, QEvent* event) {
+  // Only outermost events of the GUI thread: nested ones are part of their parent's time.
+  if (!probing || depth_ > 0 || QThread::currentThread() != thread()) return QApplication::notify(receiver, event);
+  ++depth_;
+  QElapsedTimer wall;
+  wall.start();
+  const double cpu0 = threadCpuMs();
+  const bool handled = QApplication::notify(receiver, event);
+  const double cpu = threadCpuMs() - cpu0;
+  const double ms = wall.nsecsElapsed() / 1e6;
+  --depth_;
+  if (cpu > worst_cpu_ms) {
+    worst_cpu_ms = cpu;
+    worst_wall_ms = std::max(worst_wall_ms, ms);
+    worst_what = QStringLiteral("%1 \"%2\" event %3")
+                     .arg(QLatin1String(receiver->metaObject()->className()), receiver->objectName())
+                     .arg(static_cast<int>(event->type()));
+  }
+  worst_wall_ms = std::max(worst_wall_ms, ms);
+  return handled;
+}
 
 QString scratchDir(const QString& name) {
   QDir dir(QStringLiteral(IMAGEPRO_TEST_TMP "/app/") + name);

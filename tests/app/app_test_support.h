@@ -2,6 +2,7 @@
 // Shared helpers of the application tests: scratch folders, waiting for the frame
 // the worker sends, and driving the control panel's widgets.
 #include <QAbstractButton>
+#include <QApplication>
 #include <QComboBox>
 #include <QString>
 #include <QWidget>
@@ -12,6 +13,23 @@
 #include "core/settings/enum_names.h"
 
 namespace imagepro::app::test {
+
+// The test application: while `probing`, measures how long the GUI thread spends in
+// each event it handles, in wall time and in the thread's own CPU time (the latter
+// does not count waiting for a CPU on a busy machine).
+class ProbeApplication : public QApplication {
+ public:
+  using QApplication::QApplication;
+  bool notify(QObject* receiver, QEvent* event) override;
+
+  bool probing = false;
+  double worst_wall_ms = 0.0;
+  double worst_cpu_ms = 0.0;
+  QString worst_what;
+
+ private:
+  int depth_ = 0;
+};
 
 // An empty folder IMAGEPRO_TEST_TMP/app/<name>.
 QString scratchDir(const QString& name);

@@ -1,7 +1,12 @@
 // File input: the image is processed and its parameters shown; an option change
 // reprocesses it; folders play in natural order; a bad file is a message, not a crash.
+#include <QApplication>
 #include <QComboBox>
 #include <QDir>
+#include <QDropEvent>
+#include <QFileInfo>
+#include <QMimeData>
+#include <QUrl>
 #include <QFile>
 #include <QSpinBox>
 #include <QTest>
@@ -42,8 +47,9 @@ void FileTest::fileIsProcessedAndParametersShown() {
   QVERIFY(r.pose.has_value());
   QVERIFY(std::abs(r.pose->tz_mm - 800.0) < 16.0);
   QVERIFY(std::abs(r.pose->tx_mm) < 5.0 && std::abs(r.pose->ty_mm) < 5.0);
+  // The results text follows within its refresh interval.
+  QTRY_VERIFY(w.resultsText().contains(QStringLiteral("sample01_facing.png")));
   const QString text = w.resultsText();
-  QVERIFY(text.contains(QStringLiteral("sample01_facing.png")));
   QVERIFY(text.contains(QString::number(r.pose->tz_mm, 'f', 2)));
   QVERIFY(text.contains(QStringLiteral("Threshold %1").arg(r.threshold)));
   QVERIFY(text.contains(QStringLiteral("Status    ok")));
@@ -88,6 +94,31 @@ void FileTest::missingFileShowsAnError() {
   // The window still works: a good file afterwards is processed.
   w.openPaths({kSamples + QStringLiteral("sample01_facing.png")});
   QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample01_facing.png"; }));
+}
+
+void FileTest::droppedFilesAreOpenedAndRemembered() {
+  MainWindow& w = *window_;
+  const QString file = kSamples + QStringLiteral("sample03_tilted50.png");
+  QMimeData mime;
+  mime.setUrls({QUrl::fromLocalFile(file)});
+  QDragEnterEvent enter(QPoint(10, 10), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+  QApplication::sendEvent(&w, &enter);
+  QVERIFY(enter.isAccepted());
+  QDropEvent drop(QPointF(10, 10), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+  QApplication::sendEvent(&w, &drop);
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample03_tilted50.png"; }));
+  QCOMPARE(w.recentPaths().value(0), QFileInfo(file).absoluteFilePath());
+  // Remembered by the next window too.
+  window_.reset();
+  MainWindow again;
+  QCOMPARE(again.recentPaths().value(0), QFileInfo(file).absoluteFilePath());
+  // Something that is not a file is not accepted.
+  QMimeData text;
+  text.setText(QStringLiteral("hello"));
+  QDragEnterEvent refuse(QPoint(10, 10), Qt::CopyAction, &text, Qt::LeftButton, Qt::NoModifier);
+  refuse.setAccepted(false);
+  QApplication::sendEvent(&again, &refuse);
+  QVERIFY(!refuse.isAccepted());
 }
 
 }  // namespace imagepro::app::test

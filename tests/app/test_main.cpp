@@ -6,6 +6,7 @@
 #include <QTest>
 
 #include "app_test_classes.h"
+#include "app_test_support.h"
 
 int main(int argc, char** argv) {
   if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
@@ -14,7 +15,7 @@ int main(int argc, char** argv) {
   QDir().mkpath(config);
   qputenv("XDG_CONFIG_HOME", config.toUtf8());
   QStandardPaths::setTestModeEnabled(true);
-  QApplication app(argc, argv);
+  imagepro::app::test::ProbeApplication app(argc, argv);
   QApplication::setOrganizationName(QStringLiteral("ImageProTest"));
   QApplication::setApplicationName(QStringLiteral("ImageProTest"));
 
