@@ -44,6 +44,10 @@ StatusText text(Status s) {
     case Status::TooFewMatches: return {"TooFewMatches", "too few calibration spots were matched"};
     case Status::MatchAmbiguity: return {"MatchAmbiguity", "a calibration spot matches more than one ideal position"};
     case Status::Diverged: return {"Diverged", "the iteration diverged"};
+    case Status::TooFewTargets: return {"TooFewTargets", "fewer targets were reconstructed in the frame than the measurement needs"};
+    case Status::TooFewFrames: return {"TooFewFrames", "too few frames with a reconstructed pose for the analysis"};
+    case Status::NoSwing: return {"NoSwing", "the target does not swing: no repeated oscillation stands out from the noise"};
+    case Status::TargetLost: return {"TargetLost", "the target has no pose in half of the frames or more"};
     case Status::Stopped: return {"Stopped", "processing stopped at the selected application level"};
   }
   return {"Unknown", "unknown status"};

@@ -48,6 +48,11 @@ enum class Status : std::uint8_t {
   TooFewMatches,
   MatchAmbiguity,
   Diverged,
+  // analysis (case studies, thesis 5.3)
+  TooFewTargets,       // fewer targets in the frame than the measurement needs
+  TooFewFrames,        // too few frames with a pose for the analysis
+  NoSwing,             // the target does not oscillate
+  TargetLost,          // no pose in half of the frames or more
   // processing deliberately stopped at an earlier stage (application level)
   Stopped,
 };
