@@ -1,5 +1,6 @@
 // imagepro: the desktop application (thesis appendix A).
 //   imagepro [--source virtual|file|camera] [--config FILE] [FILE|FOLDER ...]
+//            [--screenshot PNG [--after SECONDS]]   (for the documentation: save the window, quit)
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QTimer>
@@ -23,8 +24,15 @@ int main(int argc, char** argv) {
                             QStringLiteral("Input source to start with: virtual, file or camera."), QStringLiteral("kind"));
   QCommandLineOption config({QStringLiteral("c"), QStringLiteral("config")}, QStringLiteral("Settings JSON file to load."),
                             QStringLiteral("file"));
+  QCommandLineOption screenshot(QStringLiteral("screenshot"),
+                                QStringLiteral("Save a picture of the whole window to this PNG file, then quit."),
+                                QStringLiteral("png"));
+  QCommandLineOption after(QStringLiteral("after"), QStringLiteral("Seconds to run before --screenshot (default 5)."),
+                           QStringLiteral("seconds"), QStringLiteral("5"));
   parser.addOption(source);
   parser.addOption(config);
+  parser.addOption(screenshot);
+  parser.addOption(after);
   parser.addPositionalArgument(QStringLiteral("files"), QStringLiteral("Images or folders to process (File source)."),
                                QStringLiteral("[file|folder...]"));
   parser.process(app);
@@ -46,5 +54,22 @@ int main(int argc, char** argv) {
   window.selectSource(kind);
   if (!files.isEmpty()) window.openPaths(files);
   else if (parser.isSet(source) && kind != SourceKind::File) window.startSource();
+  if (parser.isSet(screenshot)) {
+    bool seconds_ok = false;
+    const double seconds = parser.value(after).toDouble(&seconds_ok);
+    if (!seconds_ok || seconds < 0.0) {
+      std::fprintf(stderr, "imagepro: --after needs a number of seconds, not '%s'\n", qPrintable(parser.value(after)));
+      return 2;
+    }
+    QTimer::singleShot(static_cast<int>(seconds * 1000.0), &window, [&window, &app, path = parser.value(screenshot)] {
+      if (!window.grab().save(path, "PNG")) {
+        std::fprintf(stderr, "imagepro: cannot write %s\n", qPrintable(path));
+        app.exit(1);
+        return;
+      }
+      window.close();
+      app.exit(0);
+    });
+  }
   return app.exec();
 }

@@ -5,6 +5,7 @@
 #include <QDockWidget>
 #include <QFileInfo>
 #include <QFontDatabase>
+#include <QFontMetrics>
 #include <QIcon>
 #include <QImageReader>
 #include <QLabel>
@@ -93,7 +94,8 @@ void MainWindow::buildResultsArea() {
   auto* text_scroll = new QScrollArea;
   text_scroll->setWidget(results_text_);
   text_scroll->setWidgetResizable(true);
-  text_scroll->setMinimumWidth(200);
+  // Wide enough for the longest line of the results text (the pose lines).
+  text_scroll->setMinimumWidth(QFontMetrics(results_text_->font()).horizontalAdvance(QString(44, QLatin1Char('0'))) + 30);
 
   results_area_ = new QWidget;
   results_area_->setObjectName(QStringLiteral("resultsArea"));

@@ -46,6 +46,7 @@ class VirtualTest : public QObject {
   void keysMoveTheTarget();
   void keysInFieldsDoNotMoveTheTarget();
   void guiStaysResponsiveAtFullSpeed();
+  void missingCameraShowsAnError();
  private:
   std::unique_ptr<MainWindow> window_;
 };

@@ -1,6 +1,7 @@
 // Virtual input in the window: Start / Stop, and the appendix A keys moving the target.
 #include <QCoreApplication>
 #include <QElapsedTimer>
+#include <QFileInfo>
 #include <QPushButton>
 #include <QSpinBox>
 #include <QTest>
@@ -156,6 +157,21 @@ void VirtualTest::guiStaysResponsiveAtFullSpeed() {
         processed_hz, shown_hz);
   QVERIFY(processed_hz > 0.0);
   QVERIFY(shown_hz > 0.0);
+  w.stopSource();
+}
+
+void VirtualTest::missingCameraShowsAnError() {
+  if (QFileInfo::exists(QStringLiteral("/dev/video0"))) QSKIP("a camera is attached: nothing to report");
+  MainWindow& w = *window_;
+  w.selectSource(SourceKind::Camera);
+  w.startSource();
+  QTRY_VERIFY_WITH_TIMEOUT(w.lastError().contains(QStringLiteral("/dev/video0")), 5000);
+  QVERIFY(!w.worker()->isRunning());
+  QCOMPARE(w.controlPanel()->sourcePanel()->button()->text(), QStringLiteral("Start"));
+  // The window goes on: the virtual source still runs.
+  w.selectSource(SourceKind::Virtual);
+  w.startSource();
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.truth.has_value(); }));
   w.stopSource();
 }
 
