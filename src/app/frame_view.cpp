@@ -75,7 +75,6 @@ void FrameView::paintEvent(QPaintEvent*) {
   if (!packet_) {
     painter.setPen(QColor(180, 180, 180));
     painter.drawText(rect(), Qt::AlignCenter, tr("No frame yet: choose a source and press Start, or open a file"));
-    emit painted();
     return;
   }
   const DisplayPacket& p = *packet_;
@@ -92,7 +91,10 @@ void FrameView::paintEvent(QPaintEvent*) {
   paintOverlays(painter);
   painter.restore();
   paintNumbers(painter);
-  emit painted();
+  if (last_painted_ != packet_.get()) {
+    last_painted_ = packet_.get();
+    emit painted();
+  }
 }
 
 void FrameView::paintOverlays(QPainter& painter) const {

@@ -30,7 +30,7 @@ class FrameView : public QWidget {
   QSize sizeHint() const override { return {660, 500}; }
 
  signals:
-  void painted();  // a packet has been drawn (the worker may send the next one)
+  void painted();  // a new packet has been drawn (the worker may send the next one)
 
  protected:
   void paintEvent(QPaintEvent* event) override;
@@ -48,6 +48,7 @@ class FrameView : public QWidget {
   QSize imageSize() const;
 
   DisplayPacketPtr packet_;
+  const DisplayPacket* last_painted_ = nullptr;  // repaints of the same packet do not count
   bool fit_ = true;       // keep the frame fitted to the view until the user zooms or pans
   double zoom_ = 1.0;
   QPointF offset_;        // screen position of image point (0, 0)'s top-left corner

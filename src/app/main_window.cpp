@@ -202,7 +202,7 @@ void MainWindow::onPacket(const DisplayPacketPtr& packet) {
   view_->setPacket(packet);
   plots_->append(packet->history);
   // A hidden view will not paint: let the worker send the next packet anyway.
-  if (!view_->isVisible()) worker_->markDisplayed();
+  if (!view_->isVisible() || view_->size().isEmpty()) worker_->markDisplayed();
   // The first frame after a pause is shown at once; while running, text and charts
   // follow at the readout rate (nobody reads numbers changing faster).
   if (!readout_clock_.isValid() || readout_clock_.elapsed() >= kReadoutMs) refreshReadouts();
