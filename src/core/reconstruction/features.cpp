@@ -6,7 +6,9 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
+#include "core/segmentation/image_buffer.h"
 #include "core/segmentation/threshold.h"
 
 namespace imagepro {
@@ -35,6 +37,14 @@ struct EllipseForm {
   double rho2(double x, double y) const {
     const double dx = x - cx, dy = y - cy;
     return P * dx * dx + 2.0 * Q * dx * dy + R * dy * dy;
+  }
+  // Radius of curvature of the level curve through (x, y): |grad|^3 / |t^T H |grad|^2 t|.
+  double curvatureRadius(double x, double y) const {
+    const double dx = x - cx, dy = y - cy;
+    const double gx = P * dx + Q * dy, gy = Q * dx + R * dy;  // half the gradient
+    const double tHt = P * gy * gy - 2.0 * Q * gx * gy + R * gx * gx;  // tangent (-gy, gx)
+    const double g2 = gx * gx + gy * gy;
+    return std::abs(tHt) > 0.0 ? g2 * std::sqrt(g2) / std::abs(tHt) : INFINITY;
   }
   // The ellipse's crossings of row y (false when it misses the row).
   bool rowCrossings(double y, double& xLeft, double& xRight) const {
@@ -66,6 +76,66 @@ struct EllipseForm {
   }
 };
 
+// floor() and round() to int without a call into libm (hot loops; finite pixel coordinates).
+int floorToInt(double v) {
+  const int i = static_cast<int>(v);
+  return i - (v < i ? 1 : 0);
+}
+int ceilToInt(double v) { return -floorToInt(-v); }
+int roundToInt(double v) { return floorToInt(v + 0.5); }
+
+// Eq. 2.1 over a crop, as binarize() does it (255 where grey > t), in a plain loop the
+// compiler vectorises: on a crop of a few thousand pixels cv::threshold's set-up costs
+// more than the work. `out` keeps an allocation the size of the whole frame.
+void binarizeCrop(const cv::Mat& grey, const cv::Rect& crop, int t, cv::Mat& out) {
+  reuseBuffer(out, crop.size(), grey.size());
+  if (t < 0 || t >= 255) {
+    out.setTo(t < 0 ? 255 : 0);
+    return;
+  }
+  const auto level = static_cast<std::uint8_t>(t);
+  // Blocks of a fixed size through local arrays: no aliasing, a known trip count, so -O2
+  // turns each block into a few vector instructions.
+  constexpr int kBlock = 16;
+  std::array<std::uint8_t, kBlock> a{}, b{};
+  for (int y = 0; y < crop.height; ++y) {
+    const std::uint8_t* in = grey.ptr<std::uint8_t>(crop.y + y) + crop.x;
+    std::uint8_t* o = out.ptr<std::uint8_t>(y);
+    int x = 0;
+    for (; x + kBlock <= crop.width; x += kBlock) {
+      std::memcpy(a.data(), in + x, kBlock);
+      for (int i = 0; i < kBlock; ++i) b[i] = a[i] > level ? 255 : 0;
+      std::memcpy(o + x, b.data(), kBlock);
+    }
+    for (; x < crop.width; ++x) o[x] = in[x] > level ? 255 : 0;
+  }
+}
+
+// One image row or column of 8-bit pixels, indexed by its image coordinate k in
+// [first, last]: the grey frame's whole line, or the binary crop's part of it.
+struct PixelLine {
+  const std::uint8_t* data = nullptr;  // the pixel at `first`
+  std::ptrdiff_t stride = 1;
+  int first = 0, last = -1;
+
+  static PixelLine row(const cv::Mat& m, int y, int x0 = 0) {
+    return {m.ptr<std::uint8_t>(y), 1, x0, x0 + m.cols - 1};
+  }
+  static PixelLine column(const cv::Mat& m, int x, int y0 = 0) {
+    return {m.ptr<std::uint8_t>(0) + x, static_cast<std::ptrdiff_t>(m.step[0]), y0, y0 + m.rows - 1};
+  }
+  bool contains(int k) const { return k >= first && k <= last; }
+  double at(int k) const { return data[(k - first) * stride]; }
+  bool white(int k) const { return contains(k) && data[(k - first) * stride] != 0; }
+  bool interp(double x, double& value) const {
+    const int k = floorToInt(x);
+    if (k < first || k + 1 > last) return false;
+    const double f = x - k;
+    value = (1.0 - f) * at(k) + f * at(k + 1);
+    return true;
+  }
+};
+
 // The binary crop seen in image coordinates; outside the crop counts as black.
 struct BinaryView {
   const cv::Mat& binary;
@@ -75,56 +145,145 @@ struct BinaryView {
     if (cx < 0 || cy < 0 || cx >= crop.width || cy >= crop.height) return false;
     return binary.ptr<std::uint8_t>(cy)[cx] != 0;
   }
+  PixelLine row(int y) const { return PixelLine::row(binary, y - crop.y, crop.x); }
+  PixelLine column(int x) const { return PixelLine::column(binary, x - crop.x, crop.y); }
 };
 
-// Grey levels along one image row or column, with linear interpolation in between.
-struct GreyLine {
-  const cv::Mat& grey;
-  bool alongRow;  // true: varies u along row `fixed`; false: varies v along column `fixed`
-  int fixed;
-  int length() const { return alongRow ? grey.cols : grey.rows; }
-  double at(int k) const {
-    return alongRow ? grey.ptr<std::uint8_t>(fixed)[k] : grey.ptr<std::uint8_t>(k)[fixed];
+// The crop's two grey classes (its mean dark and bright levels).
+struct EdgeLevels {
+  double dark = 0.0, bright = 255.0;
+  double contrast() const { return bright - dark; }
+  // An edge must rise by a fair part of the crop's contrast to be refined.
+  double minContrast() const { return kMinSubPixelContrastFraction * std::max(contrast(), 1.0); }
+};
+
+// The edge's position from the area under the profile: over pixels a..b straddling the edge,
+// each pixel's grey level, scaled between the two plateaus, is the white fraction of its
+// length, so the white run's length fixes the edge. Exact for a straight edge under any
+// blur that keeps the grey sum (a pixel's area average, a symmetric point spread), where the
+// linear interpolation between two pixels errs by up to 0.1-0.2 px on a sharp edge.
+// `roomPx` is the smaller of the line's run inside the rim and the rim's radius of
+// curvature there: on a target seen very obliquely the window would hold the far rim or a
+// strongly curved edge, and the linear crossing is kept.
+template <typename Line>
+bool areaCrossing(const Line& line, int in, const EdgeLevels& levels, double roomPx, double& x0) {
+  constexpr int kHalfWindow = 4;  // pixels either side of the crossing
+  constexpr double kPlateauTolerance = 0.15;  // of the contrast: the window's ends are on the plateaus
+  constexpr double kClassTolerance = 0.3;     // of the crop's contrast: plateaus near its class means
+  if (roomPx < 3 * (kHalfWindow + 2)) return false;
+  const int c = roundToInt(x0);
+  const int a = c - kHalfWindow, b = c + kHalfWindow;
+  if (!line.contains(a - 2) || !line.contains(b + 2)) return false;
+  // Plateaus just beyond the window; `lo` and `hi` are the window's ends on the outer and
+  // inner side.
+  const int lo = in > 0 ? a : b, hi = in > 0 ? b : a;
+  const double outside = 0.5 * (line.at(lo - in) + line.at(lo - 2 * in));
+  const double inside = 0.5 * (line.at(hi + in) + line.at(hi + 2 * in));
+  const double contrast = inside - outside;
+  if (!(contrast >= levels.minContrast())) return false;
+  // The plateaus must be the rim's own white and the card's black, not the scene beyond a
+  // card seen edge-on.
+  const double classTolerance = kClassTolerance * levels.contrast();
+  if (std::abs(outside - levels.dark) > classTolerance || std::abs(inside - levels.bright) > classTolerance)
+    return false;
+  const double plateauTolerance = kPlateauTolerance * contrast;
+  if (std::abs(line.at(lo) - outside) > plateauTolerance || std::abs(line.at(hi) - inside) > plateauTolerance)
+    return false;
+  // One clean edge: white more than 1.5 px on its inner side, black more than 1.5 px on its
+  // outer side, nothing else (a spot, or the far rim of a target seen obliquely) in the window.
+  const double mid = outside + 0.5 * contrast;
+  const int innerFrom = in > 0 ? floorToInt(x0 + 1.5) + 1 : a;
+  const int innerTo = in > 0 ? b : ceilToInt(x0 - 1.5) - 1;
+  const int outerFrom = in > 0 ? a : floorToInt(x0 + 1.5) + 1;
+  const int outerTo = in > 0 ? ceilToInt(x0 - 1.5) - 1 : b;
+  double sum = 0.0;
+  for (int k = a; k <= b; ++k) {
+    const double g = line.at(k);
+    if ((k >= innerFrom && k <= innerTo && g < mid) || (k >= outerFrom && k <= outerTo && g > mid)) return false;
+    sum += g;
   }
+  const double white = (sum - (b - a + 1) * outside) / contrast;
+  const double edge = in > 0 ? b + 0.5 - white : a - 0.5 + white;
+  if (!(std::abs(edge - x0) < 1.5)) return false;  // the window did not hold one clean edge
+  x0 = edge;
+  return true;
+}
+
+template <typename Line>
+bool linearCrossing(const Line& line, int in, const EdgeLevels& levels, double& x0) {
+  constexpr int kSearchPx = 3;
+  double o1, o2, i1, i2;
+  if (!line.interp(x0 - in * 2.5, o1) || !line.interp(x0 - in * 3.5, o2) ||
+      !line.interp(x0 + in * 2.5, i1) || !line.interp(x0 + in * 3.5, i2))
+    return false;
+  const double outside = 0.5 * (o1 + o2), inside = 0.5 * (i1 + i2);
+  if (!(inside - outside >= levels.minContrast())) return false;
+  const double level = 0.5 * (inside + outside);
+  const int k0 = floorToInt(x0);
+  double best = 0.0;
+  bool found = false;
+  for (int k = std::max(k0 - kSearchPx, line.first); k <= std::min(k0 + kSearchPx, line.last - 1); ++k) {
+    const double g0 = line.at(k), g1 = line.at(k + 1);
+    // Only a rise towards white counts.
+    if ((g1 - g0) * in <= 0.0 || (g0 - level) * (g1 - level) > 0.0) continue;
+    const double x = k + (level - g0) / (g1 - g0);
+    if (!found || std::abs(x - x0) < std::abs(best - x0)) best = x;
+    found = true;
+  }
+  if (found) x0 = best;
+  return found;
+}
+
+// The pixels of a line within kReach of pixel c, read once: the crossing's estimates below
+// touch them several times.
+struct LineWindow {
+  static constexpr int kReach = 7;
+  int first = 0, last = -1;  // the line coordinates held, c - kReach .. c + kReach
+  std::array<double, 2 * kReach + 1> g{};
+
+  bool load(const PixelLine& line, int c) {
+    if (!line.contains(c - kReach) || !line.contains(c + kReach)) return false;
+    first = c - kReach;
+    last = c + kReach;
+    const std::uint8_t* p = line.data + (first - line.first) * line.stride;
+    for (int i = 0; i <= 2 * kReach; ++i, p += line.stride) g[i] = *p;
+    return true;
+  }
+  bool contains(int k) const { return k >= first && k <= last; }
+  double at(int k) const { return g[k - first]; }
   bool interp(double x, double& value) const {
-    const int k = static_cast<int>(std::floor(x));
-    if (k < 0 || k + 1 >= length()) return false;
+    const int k = floorToInt(x);
+    if (k < first || k + 1 > last) return false;
     const double f = x - k;
     value = (1.0 - f) * at(k) + f * at(k + 1);
     return true;
   }
 };
 
-// Moves a rim crossing x0 on a grey line to where the grey level crosses the mean of its
-// two plateaus, sampled 2.5 and 3.5 px either side; `in` is +1 or -1, towards white. The
-// binary crossing can lie a pixel or two off the mid-level (a threshold near one class
-// under blur), so the plateaus are re-centred on each new crossing until it settles.
-bool refineCrossing(const GreyLine& line, int in, double minContrast, double& x0) {
+bool refineCrossing(const PixelLine& line, int in, const EdgeLevels& levels, double roomPx, double& x0) {
   constexpr int kMaxPasses = 4;
-  constexpr int kSearchPx = 3;
-  for (int pass = 0; pass < kMaxPasses; ++pass) {
-    double o1, o2, i1, i2;
-    if (!line.interp(x0 - in * 2.5, o1) || !line.interp(x0 - in * 3.5, o2) ||
-        !line.interp(x0 + in * 2.5, i1) || !line.interp(x0 + in * 3.5, i2))
-      return false;
-    const double outside = 0.5 * (o1 + o2), inside = 0.5 * (i1 + i2);
-    if (!(inside - outside >= minContrast)) return false;
-    const double level = 0.5 * (inside + outside);
-    const int k0 = static_cast<int>(std::floor(x0));
-    double best = 0.0;
-    bool found = false;
-    for (int k = std::max(k0 - kSearchPx, 0); k <= std::min(k0 + kSearchPx, line.length() - 2); ++k) {
-      const double g0 = line.at(k), g1 = line.at(k + 1);
-      // Only a rise towards white counts.
-      if ((g1 - g0) * in <= 0.0 || (g0 - level) * (g1 - level) > 0.0) continue;
-      const double x = k + (level - g0) / (g1 - g0);
-      if (!found || std::abs(x - x0) < std::abs(best - x0)) best = x;
-      found = true;
-    }
-    if (!found) return false;
-    const double moved = std::abs(best - x0);
-    x0 = best;
-    if (moved < 0.02) break;
+  LineWindow w;
+  // Re-reads the window when the estimate has moved towards its edge.
+  auto centred = [&] {
+    return (w.contains(roundToInt(x0) - LineWindow::kReach + 1) &&
+            w.contains(roundToInt(x0) + LineWindow::kReach - 1)) ||
+           w.load(line, roundToInt(x0));
+  };
+  if (!w.load(line, roundToInt(x0))) return false;
+  // The area estimate alone when it settles: once more if it moved the window's centre.
+  const double start = x0;
+  if (areaCrossing(w, in, levels, roomPx, x0)) {
+    if (roundToInt(x0) == roundToInt(start)) return true;
+    const double first = x0;
+    if (centred() && areaCrossing(w, in, levels, roomPx, x0) && std::abs(x0 - first) < 0.25) return true;
+  }
+  x0 = start;
+  if (!w.load(line, roundToInt(x0)) || !linearCrossing(w, in, levels, x0) || !centred()) return false;
+  if (areaCrossing(w, in, levels, roomPx, x0)) return true;
+  for (int pass = 1; pass < kMaxPasses; ++pass) {
+    const double before = x0;
+    if (!linearCrossing(w, in, levels, x0) || !centred()) return false;
+    if (std::abs(x0 - before) < 0.02) break;
   }
   return true;
 }
@@ -185,8 +344,8 @@ void eightPointsOrg(const BinaryView& view, const Ellipse& detected,
                     std::vector<Eigen::Vector2d>& out) {
   static constexpr std::array<std::array<int, 2>, 8> kSteps{
       {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}}};
-  const int x0 = static_cast<int>(std::lround(detected.cx));
-  const int y0 = static_cast<int>(std::lround(detected.cy));
+  const int x0 = roundToInt(detected.cx);
+  const int y0 = roundToInt(detected.cy);
   const cv::Rect& c = view.crop;
   for (const auto& step : kSteps) {
     bool inWhite = false;
@@ -212,8 +371,8 @@ void eightPointsMod(const BinaryView& view, const Ellipse& detected, double band
     const double ux = std::cos(k * M_PI / 4.0), uy = std::sin(k * M_PI / 4.0);
     const double te = form.rayLength(ux, uy);
     auto whiteAt = [&](double t) {
-      return view.white(static_cast<int>(std::lround(detected.cx + t * ux)),
-                        static_cast<int>(std::lround(detected.cy + t * uy)));
+      return view.white(roundToInt(detected.cx + t * ux),
+                        roundToInt(detected.cy + t * uy));
     };
     bool sawBlack = false;
     for (double t = te + band; t >= std::max(te - band, 0.0); t -= h) {
@@ -229,46 +388,50 @@ void eightPointsMod(const BinaryView& view, const Ellipse& detected, double band
 }
 
 void fullPathMod(const BinaryView& view, const cv::Mat& grey, const Ellipse& detected,
-                 double band, bool subPixel, double minContrast,
+                 double band, bool subPixel, const EdgeLevels& levels,
                  std::vector<Eigen::Vector2d>& out) {
   const EllipseForm form(detected, 1.0);
   const cv::Rect& c = view.crop;
+  // One crossing of a row or column with the rim, expected at `e`, the run inside the rim
+  // along that line being `run` long; `in` points towards the inside.
+  auto crossing = [&](const PixelLine& binary, const PixelLine& greyLine, double e, int in, double run,
+                      double curvature, double& at) {
+    // SubPixel starts from the detected rim itself; only where the grey levels there show no
+    // clean edge does it start again from the binary crossing.
+    if (subPixel) {
+      at = e;
+      if (refineCrossing(greyLine, in, levels, std::min(run, curvature), at)) return true;
+    }
+    const int start = roundToInt(e - in * band), end = roundToInt(e + in * band);
+    const int k = firstRimPixel(start, end, in, [&](int j) { return binary.white(j); });
+    if (k == INT32_MIN) return false;
+    at = k - in * 0.5;
+    return !subPixel || refineCrossing(greyLine, in, levels, std::min(run, curvature), at);
+  };
   // Rows cross the parts of the rim whose normal is closer to horizontal.
   for (int y = c.y; y < c.y + c.height; ++y) {
     double xs[2];
     if (!form.rowCrossings(y, xs[0], xs[1])) continue;
+    const PixelLine binary = view.row(y), greyLine = PixelLine::row(grey, y);
     for (int side = 0; side < 2; ++side) {
-      const double xe = xs[side];
-      if (!form.normalMostlyHorizontal(xe, y)) continue;
-      const int in = side == 0 ? 1 : -1;
-      const int start = static_cast<int>(std::lround(xe - in * band));
-      const int end = static_cast<int>(std::lround(xe + in * band));
-      const int k = firstRimPixel(start, end, in, [&](int x) { return view.white(x, y); });
-      // SubPixel starts from the detected rim where the binary crop shows no crossing
-      // (a threshold close to the white level under blur can leave none within the band).
-      if (k == INT32_MIN && !subPixel) continue;
-      double x = k == INT32_MIN ? xe : k - in * 0.5;
-      if (subPixel && !refineCrossing(GreyLine{grey, true, y}, in, minContrast, x)) continue;
-      out.emplace_back(x, y);
+      if (!form.normalMostlyHorizontal(xs[side], y)) continue;
+      double x;
+      if (crossing(binary, greyLine, xs[side], side == 0 ? 1 : -1, xs[1] - xs[0],
+                   subPixel ? form.curvatureRadius(xs[side], y) : 0.0, x))
+        out.emplace_back(x, y);
     }
   }
   // Columns cross the rest.
   for (int x = c.x; x < c.x + c.width; ++x) {
     double ys[2];
     if (!form.columnCrossings(x, ys[0], ys[1])) continue;
+    const PixelLine binary = view.column(x), greyLine = PixelLine::column(grey, x);
     for (int side = 0; side < 2; ++side) {
-      const double ye = ys[side];
-      if (form.normalMostlyHorizontal(x, ye)) continue;
-      const int in = side == 0 ? 1 : -1;
-      const int start = static_cast<int>(std::lround(ye - in * band));
-      const int end = static_cast<int>(std::lround(ye + in * band));
-      const int k = firstRimPixel(start, end, in, [&](int v) { return view.white(x, v); });
-      // SubPixel starts from the detected rim where the binary crop shows no crossing
-      // (a threshold close to the white level under blur can leave none within the band).
-      if (k == INT32_MIN && !subPixel) continue;
-      double y = k == INT32_MIN ? ye : k - in * 0.5;
-      if (subPixel && !refineCrossing(GreyLine{grey, false, x}, in, minContrast, y)) continue;
-      out.emplace_back(x, y);
+      if (form.normalMostlyHorizontal(x, ys[side])) continue;
+      double y;
+      if (crossing(binary, greyLine, ys[side], side == 0 ? 1 : -1, ys[1] - ys[0],
+                   subPixel ? form.curvatureRadius(x, ys[side]) : 0.0, y))
+        out.emplace_back(x, y);
     }
   }
 }
@@ -333,7 +496,7 @@ Status rethresholdCrop(const cv::Mat& grey, const cv::Rect& crop, const Threshol
   } else if (const Status s = computeThreshold(rethreshold, ws.histogram, threshold); !ok(s)) {
     return s;
   }
-  binarize(region, threshold, ws.binary);
+  binarizeCrop(grey, crop, threshold, ws.binary);
   ws.threshold = threshold;
   return Status::Ok;
 }
@@ -350,14 +513,12 @@ Status extractContour(ContourMode mode, const cv::Mat& grey, const cv::Rect& cro
     case ContourMode::EightPointsMod: eightPointsMod(view, detected, band, points); break;
     case ContourMode::FullPathOrg: fullPathOrg(view, ws, points); break;
     case ContourMode::FullPathMod:
-      fullPathMod(view, grey, detected, band, false, 0.0, points);
+      fullPathMod(view, grey, detected, band, false, EdgeLevels{}, points);
       break;
     case ContourMode::SubPixel: {
-      // An edge must rise by a fair part of the crop's contrast to be refined.
-      double dark = 0.0, bright = 255.0;
-      classMeans(ws.histogram, ws.threshold, dark, bright);
-      fullPathMod(view, grey, detected, band, true,
-                  kMinSubPixelContrastFraction * std::max(bright - dark, 1.0), points);
+      EdgeLevels levels;
+      classMeans(ws.histogram, ws.threshold, levels.dark, levels.bright);
+      fullPathMod(view, grey, detected, band, true, levels, points);
       break;
     }
   }
@@ -375,6 +536,7 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
   double dark = 0.0, bright = 255.0;
   classMeans(ws.histogram, ws.threshold, dark, bright);
   const int spotLevel = static_cast<int>(std::floor(0.5 * (dark + bright)));
+  binarizeCrop(grey, crop, spotLevel, ws.dark);  // 0 where dark enough for a spot
   std::vector<SpotRun>& runs = ws.runs;
   runs.clear();
   // Black runs inside the search ellipse, row by row; each run is joined to the
@@ -385,16 +547,15 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
     double xl, xr;
     const std::size_t rowBegin = runs.size();
     if (inner.rowCrossings(y, xl, xr)) {
-      const int x0 = std::max(static_cast<int>(std::ceil(xl)), crop.x) - crop.x;
-      const int x1 = std::min(static_cast<int>(std::floor(xr)), crop.x + crop.width - 1) - crop.x;
-      const std::uint8_t* row = grey.ptr<std::uint8_t>(y) + crop.x;
+      const int x0 = std::max(ceilToInt(xl), crop.x) - crop.x;
+      const int x1 = std::min(floorToInt(xr), crop.x + crop.width - 1) - crop.x;
+      const std::uint8_t* row = ws.dark.ptr<std::uint8_t>(r);
       for (int x = x0; x <= x1;) {
-        if (row[x] > spotLevel) {
-          ++x;
-          continue;
-        }
+        const void* hit = std::memchr(row + x, 0, static_cast<std::size_t>(x1 - x + 1));
+        if (hit == nullptr) break;
+        x = static_cast<int>(static_cast<const std::uint8_t*>(hit) - row);
         const int start = x;
-        while (x <= x1 && row[x] <= spotLevel) ++x;
+        while (x <= x1 && row[x] == 0) ++x;
         const int id = static_cast<int>(runs.size());
         runs.push_back({r, start, x - 1, id});
         for (std::size_t p = prevBegin; p < prevEnd; ++p) {
@@ -469,17 +630,33 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
       }
     }
     const double white = borderCount > 0 ? borderSum / borderCount : bright;
-    double sw = 0.0, sx = 0.0, sy = 0.0;
+    // The ellipse is convex: with the box's corners inside, every pixel is.
+    const int bx1 = box.x + box.width - 1, by1 = box.y + box.height - 1;
+    const bool boxInside = rim.rho2(box.x, box.y) < rho2Max && rim.rho2(bx1, box.y) < rho2Max &&
+                           rim.rho2(box.x, by1) < rho2Max && rim.rho2(bx1, by1) < rho2Max;
+    // Weights white - g: summed as integer moments of g (sum g, sum x g, sum y g over n
+    // pixels), combined with the white level at the end.
+    std::int64_t n = 0, sumX = 0, sumY = 0, sumG = 0, sumXG = 0, sumYG = 0;
     for (int y = box.y; y < box.y + box.height; ++y) {
       const std::uint8_t* row = grey.ptr<std::uint8_t>(y);
+      int rowN = 0, rowX = 0, rowG = 0, rowXG = 0;
       for (int x = box.x; x < box.x + box.width; ++x) {
-        if (rim.rho2(x, y) >= rho2Max) continue;
-        const double w = white - row[x];
-        sw += w;
-        sx += w * x;
-        sy += w * y;
+        if (!boxInside && rim.rho2(x, y) >= rho2Max) continue;
+        ++rowN;
+        rowX += x;
+        rowG += row[x];
+        rowXG += x * row[x];
       }
+      n += rowN;
+      sumX += rowX;
+      sumY += static_cast<std::int64_t>(rowN) * y;
+      sumG += rowG;
+      sumXG += rowXG;
+      sumYG += static_cast<std::int64_t>(rowG) * y;
     }
+    const double sw = white * static_cast<double>(n) - static_cast<double>(sumG);
+    const double sx = white * static_cast<double>(sumX) - static_cast<double>(sumXG);
+    const double sy = white * static_cast<double>(sumY) - static_cast<double>(sumYG);
     if (!(sw > 0.0)) return Status::SpotsNotFound;
     centroid[k] = Eigen::Vector2d(sx / sw, sy / sw);
   }

@@ -25,9 +25,13 @@
 //    steps. Full path MOD scans rows across the parts of the rim that run closer to
 //    vertical and columns across the rest, one point per row or column crossing.
 //  * SubPixel (beyond the thesis, its recommendation 6.3): the crossings of full path MOD,
-//    moved to where the grey level, interpolated linearly along the row or column, crosses
-//    the mean of the two plateaus 2-3 px either side of the crossing: the edge's own
-//    mid-level, independent of the threshold, of blur and of illumination.
+//    moved first to where the grey level, interpolated linearly along the row or column,
+//    crosses the mean of the two plateaus 2.5-3.5 px either side (the edge's own mid-level,
+//    independent of the threshold, of blur and of illumination), then, where the rim is
+//    neither too curved nor too close to its far side, to the position the area under the
+//    profile gives over 9 pixels (each pixel's level scaled between the plateaus is its white
+//    fraction): exact for a straight edge under any area-preserving blur, where the linear
+//    interpolation errs by up to 0.2 px on a sharp anti-aliased edge.
 // Spots: the dark 8-connected components (grey at most the middle of the crop's two class
 // means, so that a threshold close to one class cannot swell, shrink or merge them) inside
 // 0.85 of the detected ellipse with an area
@@ -62,6 +66,7 @@ struct FeatureWorkspace {
   int threshold = -1;     // the crop's threshold
   cv::Mat binary;         // the re-thresholded crop: 255 white, 0 black
   cv::Mat visited;        // full path ORG: pixels already taken
+  cv::Mat dark;           // the crop cut at the spots' level: 0 where dark
   std::vector<SpotRun> runs;
   std::vector<int> componentOf;  // per root run: its component's index
   std::vector<SpotComponent> components;

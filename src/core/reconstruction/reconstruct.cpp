@@ -55,13 +55,16 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
   out.centre_spot_ideal = spotsIdeal[0];
   out.offset_spot_ideal = spotsIdeal[1];
 
+  // The direct fit (thesis 2.6.2) without its quality measures: the detection stage has
+  // already judged the rim.
+  ConicMoments moments;
+  moments.add(std::span<const Eigen::Vector2d>(out.contour_ideal));
   EllipseFit fit;
-  const Status fitStatus = fitEllipseDirect(std::span<const Eigen::Vector2d>(out.contour_ideal), fit);
+  const Status fitStatus = fitEllipse(moments, fit);
   if (!ok(fitStatus)) return fail(out.steps.fit, fitStatus);
   out.steps.fit = Status::Ok;
   out.conic = fit.conic;
   out.ellipse = fit.ellipse;
-  out.fit_sampson_px = fit.sampson_px;
 
   const Status poseStatus = poseFromEllipse(config.camera, config.target, out.conic,
                                             out.centre_spot_ideal, out.offset_spot_ideal, out.pose);

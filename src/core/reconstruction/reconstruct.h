@@ -41,7 +41,6 @@ struct ReconstructionResult {
   Eigen::Vector2d offset_spot_ideal = Eigen::Vector2d::Zero();
   Conic conic = Conic::Zero();  // the rim's ellipse in ideal (undistorted) pixels
   Ellipse ellipse;              // the same, geometric
-  double fit_sampson_px = 0.0;  // mean Sampson distance of the fitted points
   Pose pose;
 };
 

@@ -111,7 +111,7 @@ struct EllipseOptions {
 struct ReconstructionOptions {
   bool distortion_correction = true;
   bool exact_undistortion = false;  // Newton inverse instead of the Taylor inverse (eqs. 4.18-4.19)
-  ContourMode contour_mode = ContourMode::FullPathMod;
+  ContourMode contour_mode = ContourMode::SubPixel;  // most accurate by far: docs/accuracy.md
   int crop_margin_px = 4;
 };
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <random>
 
+#include "core/ellipse/direct_fit.h"
 #include "core/source/virtual_renderer.h"
 #include "status_print.h"
 #include "test_scenes.h"
@@ -150,7 +151,11 @@ TEST_F(ReconstructTest, ResultHoldsWhatWasUsed) {
   EXPECT_TRUE(result.crop.contains(cv::Point(static_cast<int>(result.spots.centre_spot.x()),
                                              static_cast<int>(result.spots.centre_spot.y()))));
   EXPECT_GT(result.threshold, 0);
-  EXPECT_LT(result.fit_sampson_px, 0.1);
+  // The fitted ellipse passes through the fitted points.
+  EllipseFit check;
+  ASSERT_EQ(fitEllipseDirect(std::span<const Eigen::Vector2d>(result.contour_ideal), check), Status::Ok);
+  EXPECT_LT(check.sampson_px, 0.1);
+  EXPECT_LT((check.conic - result.conic).norm() * (check.conic + result.conic).norm(), 1e-12);
   // The ideal points are the seen ones corrected: distorting them gives the seen ones back.
   for (std::size_t i = 0; i < result.contour.size(); i += 17)
     EXPECT_LT((distortPixel(settings.camera, result.contour_ideal[i]) - result.contour[i]).norm(), 0.05);
@@ -174,9 +179,16 @@ TEST_F(ReconstructTest, NamedErrorsAndTheStepThatGaveThem) {
   EXPECT_EQ(result.steps.crop, Status::Ok);
   EXPECT_EQ(result.steps.threshold, Status::ThresholdUndefined);
 
-  settings.pipeline.rethreshold = {ThresholdMethod::Manual, 255};  // everything black
+  // Everything black in the binary crop: no binary crossing; the sub-pixel mode still finds
+  // the rim in the grey levels, but not on a black frame.
+  settings.pipeline.rethreshold = {ThresholdMethod::Manual, 255};
+  settings.pipeline.reconstruction.contour_mode = ContourMode::FullPathMod;
   EXPECT_EQ(reconstructTarget(settings, image, e, 128, ws, result), Status::TooFewPoints);
   EXPECT_EQ(result.steps.contour, Status::TooFewPoints);
+  settings.pipeline.reconstruction.contour_mode = ContourMode::SubPixel;
+  EXPECT_EQ(reconstructTarget(settings, image, e, 128, ws, result), Status::Ok);
+  const cv::Mat black(480, 640, CV_8UC1, cv::Scalar(0));
+  EXPECT_EQ(reconstructTarget(settings, black, e, 128, ws, result), Status::TooFewPoints);
   settings.pipeline.rethreshold = {ThresholdMethod::None, 0};
   EXPECT_EQ(reconstructTarget(settings, image, e, -1, ws, result), Status::InvalidSettings);
   EXPECT_EQ(reconstructTarget(settings, image, e, 128, ws, result), Status::Ok);

@@ -1,0 +1,109 @@
+// Reconstruction stage speed (issue 4 goal: crop to pose <= 50 us per frame on one core):
+// crop + re-threshold + contour + spots + distortion correction + fit + pose, per contour
+// mode and target distance, on grey 640x480 frames with noise, blur and the thesis camera's
+// distortion; and its parts.
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Geometry>
+
+#include "core/ellipse/direct_fit.h"
+#include "core/reconstruction/pose.h"
+#include "core/reconstruction/reconstruct.h"
+#include "core/reconstruction/undistort.h"
+#include "core/source/virtual_renderer.h"
+
+namespace imagepro {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+struct Scene {
+  Settings settings;
+  Pose pose;
+  cv::Mat image;
+  Ellipse detected;
+
+  Scene(double distanceMm, ContourMode mode) {
+    settings.camera.distortion = kThesisCameraDistortion;
+    settings.virtual_scene.noise_sigma = 2.0;
+    settings.virtual_scene.blur_sigma_px = 0.6;
+    settings.virtual_scene.clutter = 6;
+    settings.pipeline.reconstruction.contour_mode = mode;
+    // 35 deg of tilt, a little off the image centre.
+    const Eigen::Matrix3d R = (Eigen::AngleAxisd(35 * kDeg, Eigen::Vector3d(0.6, 0.8, 0)) *
+                               Eigen::AngleAxisd(20 * kDeg, Eigen::Vector3d::UnitZ()))
+                                  .toRotationMatrix();
+    pose = poseFromRt(R, Eigen::Vector3d(30, -20, distanceMm));
+    renderTarget(settings.camera, settings.target, settings.virtual_scene, pose, image, 1);
+    // The rim as the detection stage reports it (the seen rim's best ellipse).
+    std::vector<Eigen::Vector2d> rim;
+    const Eigen::Vector3d T = translation(pose);
+    for (int i = 0; i < 180; ++i) {
+      const double a = 2 * M_PI * i / 180;
+      rim.push_back(distortPixel(settings.camera,
+                                 projectIdeal(settings.camera, R * Eigen::Vector3d(50 * std::cos(a), 50 * std::sin(a), 0) + T)));
+    }
+    EllipseFit fit;
+    fitEllipseDirect(std::span<const Eigen::Vector2d>(rim), fit);
+    detected = fit.ellipse;
+  }
+};
+
+void BM_CropToPose(benchmark::State& state) {
+  const Scene scene(static_cast<double>(state.range(0)), static_cast<ContourMode>(state.range(1)));
+  const ReconstructionConfig config = reconstructionConfig(scene.settings);
+  ReconstructionWorkspace ws;
+  ReconstructionResult result;
+  for (auto _ : state) {
+    const Status s = reconstructTarget(config, scene.image, scene.detected, 128, ws, result);
+    if (!ok(s)) state.SkipWithError("reconstruction failed");
+    benchmark::DoNotOptimize(result.pose);
+  }
+  state.counters["points"] = static_cast<double>(result.contour.size());
+}
+// (distance mm, contour mode) for every mode at 800 mm; the default mode near and far.
+BENCHMARK(BM_CropToPose)
+    ->ArgNames({"mm", "mode"})
+    ->Args({800, static_cast<int>(ContourMode::EightPointsOrg)})
+    ->Args({800, static_cast<int>(ContourMode::EightPointsMod)})
+    ->Args({800, static_cast<int>(ContourMode::FullPathOrg)})
+    ->Args({800, static_cast<int>(ContourMode::FullPathMod)})
+    ->Args({800, static_cast<int>(ContourMode::SubPixel)})
+    ->Args({400, static_cast<int>(ContourMode::SubPixel)})
+    ->Args({1200, static_cast<int>(ContourMode::SubPixel)})
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_PoseFromEllipse(benchmark::State& state) {
+  const Scene scene(800, ContourMode::SubPixel);
+  ReconstructionWorkspace ws;
+  ReconstructionResult result;
+  reconstructTarget(reconstructionConfig(scene.settings), scene.image, scene.detected, 128, ws, result);
+  Pose pose;
+  for (auto _ : state) {
+    poseFromEllipse(scene.settings.camera, scene.settings.target, result.conic, result.centre_spot_ideal,
+                    result.offset_spot_ideal, pose);
+    benchmark::DoNotOptimize(pose);
+  }
+}
+BENCHMARK(BM_PoseFromEllipse)->Unit(benchmark::kMicrosecond);
+
+void BM_UndistortPoint(benchmark::State& state) {
+  CameraModel cam;
+  cam.distortion = kThesisCameraDistortion;
+  const bool exact = state.range(0) != 0;
+  std::vector<Eigen::Vector2d> points;
+  for (int i = 0; i < 256; ++i) points.emplace_back(20 + 2.3 * i, 30 + 1.6 * i);
+  std::vector<Eigen::Vector2d> work = points;
+  for (auto _ : state) {
+    work = points;
+    undistortPoints(cam, exact, work);
+    benchmark::DoNotOptimize(work.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(points.size()));
+}
+BENCHMARK(BM_UndistortPoint)->ArgNames({"exact"})->Arg(0)->Arg(1);
+
+}  // namespace
+}  // namespace imagepro
+
+BENCHMARK_MAIN();
