@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace imagepro {
@@ -19,10 +20,10 @@ struct SineFit {
   double amplitude() const { return std::hypot(a, b); }
 };
 
-SineFit fitSine(std::span<const double> t, std::span<const double> s, double omega, std::size_t stride = 1) {
+SineFit fitSine(std::span<const double> t, std::span<const double> s, double omega) {
   Eigen::Matrix3d N = Eigen::Matrix3d::Zero();
   Eigen::Vector3d r = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < t.size(); i += stride) {
+  for (std::size_t i = 0; i < t.size(); ++i) {
     const Eigen::Vector3d x(1.0, std::cos(omega * t[i]), std::sin(omega * t[i]));
     N.noalias() += x * x.transpose();
     r += x * s[i];
@@ -34,7 +35,7 @@ SineFit fitSine(std::span<const double> t, std::span<const double> s, double ome
   f.c = p[0];
   f.a = p[1];
   f.b = p[2];
-  for (std::size_t i = 0; i < t.size(); i += stride) {
+  for (std::size_t i = 0; i < t.size(); ++i) {
     const double e = s[i] - (f.c + f.a * std::cos(omega * t[i]) + f.b * std::sin(omega * t[i]));
     f.rss += e * e;
   }
@@ -42,19 +43,49 @@ SineFit fitSine(std::span<const double> t, std::span<const double> s, double ome
   return f;
 }
 
-// The angular frequency whose sinusoid explains most of s: a scan at an eighth of the
-// record's frequency resolution, then golden-section refinement around the best.
+// The angular frequency whose sinusoid explains most of s: a scan at a quarter of the
+// record's frequency resolution, then golden-section refinement around the best. The
+// scan's sines and cosines come from one rotation per sample and frequency step, so it
+// costs a few multiply-adds per sample and frequency (no subsampling, so no aliases).
 double bestSineOmega(std::span<const double> t, std::span<const double> s, double min_hz, double max_hz) {
   const double duration = t.back() - t.front();
-  const double step_hz = 1.0 / (8.0 * duration);
-  // Long records are scanned on a subsample; the refinement uses every sample.
-  const std::size_t stride = std::max<std::size_t>(1, t.size() / 1000);
+  const double step_hz = 1.0 / (4.0 * duration);
+  const std::size_t steps = static_cast<std::size_t>(std::max(0.0, (max_hz - min_hz) / step_hz)) + 1;
+  // Per frequency: sums of cc, ss, sc, c, s, y c, y s.
+  std::vector<std::array<double, 7>> sums(steps, std::array<double, 7>{});
+  double n = 0.0, sum_y = 0.0, sum_yy = 0.0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    double c = std::cos(2.0 * M_PI * min_hz * t[i]), sn = std::sin(2.0 * M_PI * min_hz * t[i]);
+    const double cd = std::cos(2.0 * M_PI * step_hz * t[i]), sd = std::sin(2.0 * M_PI * step_hz * t[i]);
+    const double y = s[i];
+    n += 1.0;
+    sum_y += y;
+    sum_yy += y * y;
+    for (std::array<double, 7>& a : sums) {
+      a[0] += c * c;
+      a[1] += sn * sn;
+      a[2] += sn * c;
+      a[3] += c;
+      a[4] += sn;
+      a[5] += y * c;
+      a[6] += y * sn;
+      const double next_c = c * cd - sn * sd;
+      sn = sn * cd + c * sd;
+      c = next_c;
+    }
+  }
   double best_hz = min_hz, best_rss = INFINITY;
-  for (double f = min_hz; f <= max_hz; f += step_hz) {
-    const SineFit fit = fitSine(t, s, 2.0 * M_PI * f, stride);
-    if (fit.ok && fit.rss < best_rss) {
-      best_rss = fit.rss;
-      best_hz = f;
+  for (std::size_t k = 0; k < steps; ++k) {
+    const std::array<double, 7>& a = sums[k];
+    Eigen::Matrix3d N;
+    N << n, a[3], a[4], a[3], a[0], a[2], a[4], a[2], a[1];
+    const Eigen::Vector3d r(sum_y, a[5], a[6]);
+    const Eigen::LDLT<Eigen::Matrix3d> ldlt(N);
+    if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-12)) continue;
+    const double rss = sum_yy - r.dot(ldlt.solve(r));  // residual of the least-squares fit
+    if (rss < best_rss) {
+      best_rss = rss;
+      best_hz = min_hz + static_cast<double>(k) * step_hz;
     }
   }
   auto rss = [&](double f) {
