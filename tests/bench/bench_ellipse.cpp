@@ -112,6 +112,23 @@ void detectStage(benchmark::State& state, EllipseMethod method) {
 void DirectFitStage(benchmark::State& state) { detectStage(state, EllipseMethod::DirectFit); }
 void BennettStage(benchmark::State& state) { detectStage(state, EllipseMethod::Bennett); }
 
+// Shape-only classification of every path (as the thesis's table 2.6 timed it: every
+// connected path tested, no spot pre-selection).
+void everyPath(benchmark::State& state, EllipseMethod method) {
+  const auto& f = frames();
+  EllipseOptions o;
+  o.method = method;
+  EllipseWorkspace ws;
+  std::vector<TargetDetection> out;
+  runFrames(state, [&](int i) {
+    detectEllipses(o, f[static_cast<std::size_t>(i)], kImage, ws, out);
+    benchmark::DoNotOptimize(out.data());
+  });
+}
+
+void DirectFitEveryPath(benchmark::State& state) { everyPath(state, EllipseMethod::DirectFit); }
+void BennettEveryPath(benchmark::State& state) { everyPath(state, EllipseMethod::Bennett); }
+
 // The fit alone (moments, Halir-Flusser solve, ellipse parameters) on every path of at
 // least min_path_pixels: the work cv::fitEllipseDirect does.
 void FitOnly(benchmark::State& state) {
@@ -154,6 +171,8 @@ void frameArgs(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(DirectFitStage)->Apply(frameArgs);
 BENCHMARK(BennettStage)->Apply(frameArgs);
+BENCHMARK(DirectFitEveryPath)->Apply(frameArgs);
+BENCHMARK(BennettEveryPath)->Apply(frameArgs);
 BENCHMARK(FitOnly)->Apply(frameArgs);
 BENCHMARK(OpenCvFitEllipseDirect)->Apply(frameArgs);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 
 namespace imagepro {
 
@@ -10,6 +11,10 @@ namespace {
 
 constexpr int kMargin = 2;  // accumulator cells around the path's bounding box
 constexpr int kSnap = 2;    // cells
+// The coarse screen (bennettAccumulate): paths of at least kMinScreenPoints sampled
+// pixels whose coarse peak share is below kScreenShare of the required one stop there.
+constexpr std::size_t kMinScreenPoints = 48;
+constexpr double kScreenShare = 0.5;
 // A ring is point-symmetric about the peak while sum|A(q) - A(q')| / sum(A(q) + A(q'))
 // over its mirrored cells stays below this (exact symmetry gives 0; subsampling and
 // float rounding give a few per cent).
@@ -20,9 +25,9 @@ struct Box {
   bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < w && y < h; }
 };
 
-// Adds `weight` to every cell on the ray from m along u (unit), clipped to the box.
+// Adds a vote to every cell on the ray from m along u (unit), clipped to the box.
 // Steps of one cell along the dominant axis, so no cell is counted twice.
-inline void voteRay(float* acc, const Box& box, double mx, double my, double ux, double uy, float weight) {
+inline void voteRay(std::uint32_t* acc, const Box& box, double mx, double my, double ux, double uy) {
   double tmax = std::numeric_limits<double>::infinity();
   // The box in cell-centre coordinates: [0, w-1] x [0, h-1], widened by half a cell.
   const double lo_x = -0.5, hi_x = box.w - 0.5, lo_y = -0.5, hi_y = box.h - 0.5;
@@ -41,49 +46,32 @@ inline void voteRay(float* acc, const Box& box, double mx, double my, double ux,
   const unsigned w = static_cast<unsigned>(box.w), h = static_cast<unsigned>(box.h);
   for (int i = 0; i <= steps; ++i, x += sx, y += sy) {
     const unsigned cx = static_cast<unsigned>(x >> 16), cy = static_cast<unsigned>(y >> 16);
-    if (cx < w && cy < h) acc[cy * w + cx] += weight;  // fails only by rounding at the box edge
+    if (cx < w && cy < h) ++acc[cy * w + cx];  // fails only by rounding at the box edge
   }
 }
 
-}  // namespace
 
-Status bennettAccumulate(std::span<const EdgePixel> path, int max_points, BennettWorkspace& ws,
-                         BennettResult& out) {
-  out = BennettResult{};
-  // Pixels with a gradient (a tangent); evenly subsampled beyond max_points.
-  std::size_t usable = 0;
-  for (const EdgePixel& p : path) usable += (p.gx != 0 || p.gy != 0);
-  if (usable < 6) return Status::TooFewPoints;
-  const std::size_t keep = max_points > 0 ? std::min<std::size_t>(usable, static_cast<std::size_t>(max_points)) : usable;
+// Samples `keep` of the `usable` pixels (those with a gradient) and accumulates every
+// pair's ray into ws.accumulator over `box`; returns the pairs that voted. The sample is
+// a uniformly random subset (selection sampling, fixed seed): a path's pixels come in
+// breadth-first order, which alternates between the two fronts of a contour, so an even
+// stride through the list could take one side of the curve only.
+std::size_t accumulatePairs(std::span<const EdgePixel> path, std::size_t usable, std::size_t keep, const Box& box,
+                            BennettWorkspace& ws) {
   ws.sample.clear();
-  {
-    std::size_t taken = 0, k = 0;  // k counts usable pixels
-    for (std::uint32_t i = 0; i < path.size(); ++i) {
-      if (path[i].gx == 0 && path[i].gy == 0) continue;
-      // The first usable pixel at or after taken * usable / keep.
-      if (taken < keep && k * keep >= taken * usable) {
-        ws.sample.push_back(i);
-        ++taken;
-      }
-      ++k;
-    }
+  std::minstd_rand rng(static_cast<std::minstd_rand::result_type>(usable * 2654435761u + keep));
+  std::size_t seen = 0;
+  for (std::uint32_t i = 0; i < path.size() && ws.sample.size() < keep; ++i) {
+    if (path[i].gx == 0 && path[i].gy == 0) continue;
+    // Take this pixel with probability (still needed) / (still available).
+    const std::size_t needed = keep - ws.sample.size(), available = usable - seen;
+    if (needed == available || static_cast<std::size_t>(rng() % available) < needed) ws.sample.push_back(i);
+    ++seen;
   }
+  ws.accumulator.assign(static_cast<std::size_t>(box.w) * box.h, 0u);
+  std::uint32_t* acc = ws.accumulator.data();
   const std::size_t m = ws.sample.size();
-  const double all_pairs = 0.5 * static_cast<double>(usable) * static_cast<double>(usable - 1);
-  const double sampled_pairs = 0.5 * static_cast<double>(m) * static_cast<double>(m - 1);
-  const float weight = static_cast<float>(all_pairs / sampled_pairs);
-
-  int minx = path[0].x, maxx = minx, miny = path[0].y, maxy = miny;
-  for (const EdgePixel& p : path) {
-    minx = std::min<int>(minx, p.x);
-    maxx = std::max<int>(maxx, p.x);
-    miny = std::min<int>(miny, p.y);
-    maxy = std::max<int>(maxy, p.y);
-  }
-  const Box box{minx - kMargin, miny - kMargin, maxx - minx + 1 + 2 * kMargin, maxy - miny + 1 + 2 * kMargin};
-  ws.accumulator.assign(static_cast<std::size_t>(box.w) * box.h, 0.0f);
-  float* acc = ws.accumulator.data();
-
+  std::size_t pairs = 0;
   for (std::size_t i = 0; i < m; ++i) {
     const EdgePixel& a = path[ws.sample[i]];
     const double x1 = a.x - box.x0, y1 = a.y - box.y0;
@@ -100,31 +88,76 @@ Status bennettAccumulate(std::span<const EdgePixel> path, int max_points, Bennet
       if (!(s1 * s2 > 0.0)) continue;
       const double mx = 0.5 * (x1 + x2), my = 0.5 * (y1 + y2);
       const double det = g1x * g2y - g1y * g2x;
-      ++out.pairs;
+      ++pairs;
       if (det == 0.0) {  // parallel tangents: every ellipse of the family is centred at M
         const int cx = static_cast<int>(std::lround(mx)), cy = static_cast<int>(std::lround(my));
-        if (box.contains(cx, cy)) acc[static_cast<std::size_t>(cy) * box.w + cx] += weight;
+        if (box.contains(cx, cy)) ++acc[static_cast<std::size_t>(cy) * box.w + cx];
         continue;
       }
       const double c2 = g2x * x2 + g2y * y2;
       const double tx = (c1 * g2y - c2 * g1y) / det, ty = (g1x * c2 - g2x * c1) / det;
-      double ux = mx - tx, uy = my - ty;
-      const double len = std::hypot(ux, uy);
-      if (!(len > 1e-9)) continue;
-      ux /= len;
-      uy /= len;
-      voteRay(acc, box, mx, my, ux, uy, weight);
+      const double ux = mx - tx, uy = my - ty;
+      const double len2 = ux * ux + uy * uy;
+      if (!(len2 > 1e-18)) continue;
+      const double inv = 1.0 / std::sqrt(len2);
+      voteRay(acc, box, mx, my, ux * inv, uy * inv);
     }
   }
+  return pairs;
+}
+
+double maxVotes(const BennettWorkspace& ws) {
+  std::uint32_t best = 0;
+  for (const std::uint32_t v : ws.accumulator) best = std::max(best, v);
+  return best;
+}
+
+}  // namespace
+
+Status bennettAccumulate(std::span<const EdgePixel> path, int max_points, BennettWorkspace& ws, BennettResult& out,
+                         double screen_peak_fraction) {
+  out = BennettResult{};
+  std::size_t usable = 0;
+  for (const EdgePixel& p : path) usable += (p.gx != 0 || p.gy != 0);
+  if (usable < 6) return Status::TooFewPoints;
+  const std::size_t keep = max_points > 0 ? std::min<std::size_t>(usable, static_cast<std::size_t>(max_points)) : usable;
+  const double all_pairs = 0.5 * static_cast<double>(usable) * static_cast<double>(usable - 1);
+  auto pairsOf = [](std::size_t m) { return 0.5 * static_cast<double>(m) * static_cast<double>(m - 1); };
+
+  int minx = path[0].x, maxx = minx, miny = path[0].y, maxy = miny;
+  for (const EdgePixel& p : path) {
+    minx = std::min<int>(minx, p.x);
+    maxx = std::max<int>(maxx, p.x);
+    miny = std::min<int>(miny, p.y);
+    maxy = std::max<int>(maxy, p.y);
+  }
+  const Box box{minx - kMargin, miny - kMargin, maxx - minx + 1 + 2 * kMargin, maxy - miny + 1 + 2 * kMargin};
+
+  // Coarse screen: on half the points (a quarter of the pairs) the peak of a path that
+  // passes gathers about its full share; far below, the full accumulation is skipped.
+  if (screen_peak_fraction > 0.0 && keep >= kMinScreenPoints) {
+    out.pairs = accumulatePairs(path, usable, keep / 2, box, ws);
+    const double fraction = maxVotes(ws) / pairsOf(ws.sample.size());
+    if (fraction < kScreenShare * screen_peak_fraction) {
+      out.peak_fraction = fraction;
+      out.score = fraction * all_pairs;
+      return out.pairs == 0 ? Status::NoTarget : Status::Ok;  // symmetry_px 0: never accepted
+    }
+  }
+  out.pairs = accumulatePairs(path, usable, keep, box, ws);
   if (out.pairs == 0) return Status::NoTarget;
+  const std::uint32_t* acc = ws.accumulator.data();
+  // Votes are counted per cell; the weight of a sampled pair scales the scores after.
+  const double weight = all_pairs / pairsOf(ws.sample.size());
 
   // Absolute peak.
   std::size_t best = 0;
   for (std::size_t k = 1; k < ws.accumulator.size(); ++k)
     if (acc[k] > acc[best]) best = k;
   const int px = static_cast<int>(best % box.w), py = static_cast<int>(best / box.w);
-  out.score = acc[best];
-  if (!(out.score > 0.0f)) return Status::NoTarget;
+  const double peak = acc[best];  // votes; the score is in all-pairs units
+  if (!(peak > 0.0)) return Status::NoTarget;
+  out.score = weight * peak;
   out.peak_fraction = out.score / all_pairs;
   const int border = std::min({px, py, box.w - 1 - px, box.h - 1 - py});  // for the rings of the quality
 
@@ -170,9 +203,9 @@ Status bennettAccumulate(std::span<const EdgePixel> path, int max_points, Bennet
       ring_both[r] += u + v;
     }
   }
-  const double half = 0.5 * out.score;
+  const double half = 0.5 * peak;
   out.half_radius_px = border;  // when the mean never falls to half inside the box
-  double prev = out.score;
+  double prev = peak;
   for (int r = 1; r <= border; ++r) {
     const double mean = ring_sum[r] / ring_count[r];
     if (mean <= half) {

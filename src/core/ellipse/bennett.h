@@ -49,14 +49,18 @@ struct BennettResult {
 };
 
 struct BennettWorkspace {
-  std::vector<float> accumulator;
+  std::vector<std::uint32_t> accumulator;  // votes per cell
   std::vector<std::uint32_t> sample;  // indices of the sampled path pixels
   std::vector<double> rings;           // per-ring sums about the peak
 };
 
 // TooFewPoints for fewer than 6 pixels with a gradient, NoTarget when no pair votes.
-Status bennettAccumulate(std::span<const EdgePixel> path, int max_points, BennettWorkspace& ws,
-                         BennettResult& out);
+// screen_peak_fraction > 0 (the decision rule's minimum peak share): the path is first
+// accumulated from half its sampled pixels, and if that peak gathers less than half
+// the share the full accumulation is skipped (out then has the coarse score and share,
+// and no symmetry: never accepted). Most non-elliptical paths stop there.
+Status bennettAccumulate(std::span<const EdgePixel> path, int max_points, BennettWorkspace& ws, BennettResult& out,
+                         double screen_peak_fraction = 0.0);
 
 // The thesis's decision rules 1-3 (rule 4, the highest score among the accepted paths,
 // is the caller's): symmetry reaching the accumulator border, quality and score within

@@ -96,7 +96,7 @@ void fitPath(const EllipseOptions& o, const Paths& paths, std::size_t i, cv::Siz
   s.fit_status = fitEllipse(m, s.fit);
   if (!ok(s.fit_status)) return;  // no ellipse parameters for this path
   if (o.method == EllipseMethod::Bennett) {
-    if (!ok(bennettAccumulate(path, o.bennett_max_points, ws.bennett, s.bennett))) return;
+    if (!ok(bennettAccumulate(path, o.bennett_max_points, ws.bennett, s.bennett, o.bennett_min_peak_fraction))) return;
     s.accepted = bennettAccepts(o, s.bennett);
     if (s.accepted) traceEllipse(s.fit, path, o.trace_inlier_px, image, s.trace);
     return;
