@@ -90,6 +90,7 @@ class SettingsFileTest : public QObject {
   void roundTrip();
   void malformedFileNamesTheKey();
   void unreadableFileIsAnError();
+  void windowLayoutIsRemembered();
  private:
   std::unique_ptr<MainWindow> window_;
 };

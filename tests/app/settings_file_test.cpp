@@ -1,10 +1,13 @@
 // Save / Load / Restore defaults through the window, and files that cannot be used.
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDockWidget>
 #include <QFile>
 #include <QSpinBox>
 #include <QTest>
 
+#include "app/collapsible_group.h"
+#include "app/control_panel.h"
 #include "app/main_window.h"
 #include "app/worker.h"
 #include "app_test_classes.h"
@@ -88,6 +91,29 @@ void SettingsFileTest::unreadableFileIsAnError() {
   QVERIFY(w.lastError().contains(QStringLiteral("absent.json")));
   QVERIFY(!w.saveSettingsFile(dir + QStringLiteral("/no/such/dir/s.json")));
   QVERIFY(!w.lastError().isEmpty());
+}
+
+void SettingsFileTest::windowLayoutIsRemembered() {
+  MainWindow& w = *window_;
+  w.resize(1111, 777);
+  auto* plots = w.findChild<QDockWidget*>(QStringLiteral("plotDock"));
+  QVERIFY(plots && plots->isVisible());
+  plots->hide();
+  CollapsibleGroup* folded = w.controlPanel()->groups().at(2);
+  folded->setExpanded(false);
+  const QString title = folded->title();
+  w.close();  // saves the layout
+  window_.reset();
+
+  MainWindow again;
+  again.show();
+  QCOMPARE(again.size(), QSize(1111, 777));
+  QVERIFY(!again.findChild<QDockWidget*>(QStringLiteral("plotDock"))->isVisible());
+  for (CollapsibleGroup* g : again.controlPanel()->groups()) QCOMPARE(g->isExpanded(), g->title() != title);
+  // Put things back for the tests after this one.
+  again.findChild<QDockWidget*>(QStringLiteral("plotDock"))->show();
+  for (CollapsibleGroup* g : again.controlPanel()->groups()) g->setExpanded(true);
+  again.close();
 }
 
 }  // namespace imagepro::app::test
