@@ -4,6 +4,7 @@
 // a pipeline composed of stock OpenCV calls and AprilTag 3 (tag36h11).
 #include <sys/resource.h>
 
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -247,6 +248,8 @@ int run(const Args& args) {
     sizes = {{w, h}};
   }
 
+  // One core for everybody: OpenCV would otherwise spread its peer's work over threads.
+  cv::setNumThreads(1);
   std::vector<ResolutionResult> results;
   for (const cv::Size& size : sizes) {
     std::fprintf(stderr, "rendering %d frames at %dx%d ...\n", frames, size.width, size.height);

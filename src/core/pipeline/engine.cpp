@@ -111,14 +111,21 @@ void Engine::Impl::run(FrameResult& out) {
 
   auto start = Clock::now();
   out.search_region = tracker.estimate(o.tracking, settings.camera, settings.target, t, grey.size()).value_or(whole);
-  cropWithHistogram(grey, out.search_region, crop, out.histogram);
+  // The whole frame needs no copy: threshold it in place. A tracked region is copied
+  // into the engine's own buffer, never into the frame's (another view may share it).
+  const bool whole_frame = out.search_region == whole;
+  if (whole_frame)
+    computeHistogram(grey, out.histogram);
+  else
+    cropWithHistogram(grey, out.search_region, crop, out.histogram);
+  const cv::Mat& searched = whole_frame ? grey : crop;
   out.times[Stage::Crop] = microsecondsSince(start);
   if (!reached(o.level, ApplicationLevel::Threshold)) return;
 
   start = Clock::now();
   out.reached = ApplicationLevel::Threshold;
   out.status = computeThreshold(o.threshold, out.histogram, out.threshold);
-  if (ok(out.status)) binarize(crop, out.threshold, binary);
+  if (ok(out.status)) binarize(searched, out.threshold, binary);
   out.times[Stage::Threshold] = microsecondsSince(start);
   if (!ok(out.status)) {
     tracker.observeMiss();
