@@ -65,9 +65,8 @@ std::unique_ptr<FrameSource> createSource(SourceKind kind, const Settings& setti
   return nullptr;
 }
 
-bool updateSource(FrameSource& source, SourceKind kind, const Settings& settings) {
+void updateSource(FrameSource& source, SourceKind kind, const Settings& settings) {
   if (kind == SourceKind::Virtual) static_cast<VirtualSource&>(source).setSettings(settings);
-  return true;
 }
 
 void pressSourceKey(FrameSource& source, SourceKind kind, VirtualKey key) {

@@ -18,8 +18,9 @@ namespace imagepro::app {
 // or one video file (played at its own rate).
 std::unique_ptr<FrameSource> createSource(SourceKind kind, const Settings& settings, const QStringList& paths,
                                           std::string& error);
-// Gives a live source the new settings; false when it has to be built anew.
-bool updateSource(FrameSource& source, SourceKind kind, const Settings& settings);
+// Gives a live source the new settings (the virtual scene and camera; its time and
+// key offset are kept). Files and cameras take nothing from the settings.
+void updateSource(FrameSource& source, SourceKind kind, const Settings& settings);
 // Moves the virtual target by one key press; other sources ignore keys.
 void pressSourceKey(FrameSource& source, SourceKind kind, VirtualKey key);
 

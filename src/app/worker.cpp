@@ -186,16 +186,9 @@ bool Worker::applyPending() {
   }
   if (settings) {
     engine_.setSettings(*settings);
-    if (source_ && !updateSource(*source_, kind_, *settings)) {
-      // The source cannot take the new scene or camera in place: build it anew.
-      std::string error;
-      auto fresh = createSource(kind_, *settings, {}, error);
-      if (fresh) {
-        source_ = std::move(fresh);
-        emit sourceChanged(QString::fromStdString(source_->describe()));
-      } else {
-        emit errorOccurred(QString::fromStdString(error));
-      }
+    if (source_) {
+      updateSource(*source_, kind_, *settings);
+      emit sourceChanged(QString::fromStdString(source_->describe()));
     }
   }
   if (source_)
