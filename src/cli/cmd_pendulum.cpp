@@ -51,7 +51,7 @@ std::vector<PoseSample> reconstructSequence(FrameSource& source, const Settings&
   bool increasing = true;
   for (std::size_t i = 1; increasing && i < samples.size(); ++i) increasing = samples[i].t_s > samples[i - 1].t_s;
   if (!increasing) {
-    if (!(frame_rate_hz > 0.0)) throw UsageError("the frames have no times: give --fps");
+    if (!(frame_rate_hz > 0.0)) throw UsageError("the frames have no times: give --rate");
     for (std::size_t i = 0; i < samples.size(); ++i) samples[i].t_s = indices[i] / frame_rate_hz;
   }
   return samples;
@@ -98,7 +98,7 @@ void writePlots(const std::string& prefix, const std::vector<PoseSample>& sample
 
 int run(const Args& args) {
   std::vector<std::string> known = kFrameInputOptions;
-  known.insert(known.end(), {"format", "plot", "no-plot", "fps", "no-amplitude-correction", "noise", "blur-exposure",
+  known.insert(known.end(), {"format", "plot", "no-plot", "rate", "no-amplitude-correction", "noise", "blur-exposure",
                              "subframes", "data-out"});
   args.rejectUnknown(known);
   const std::string format = args.valueOr("format", "text");
@@ -107,12 +107,17 @@ int run(const Args& args) {
   const bool virtual_input = args.has("virtual");
   for (const char* option : {"noise", "blur-exposure", "subframes"})
     if (args.has(option) && !virtual_input) throw UsageError(std::string("--") + option + " goes with --virtual");
-  const double fps = args.number("fps", settings.virtual_scene.frame_rate_hz);
-  if (!(fps > 0.0)) throw UsageError("--fps must be above 0");
+  const double rate_hz = args.number("rate", settings.virtual_scene.frame_rate_hz);
+  if (!(rate_hz > 0.0)) throw UsageError("--rate must be above 0");
 
   const bool csv_input = args.positionals().size() == 1 &&
                          std::filesystem::path(args.positionals()[0]).extension() == ".csv";
   if (csv_input && args.has("data-out")) throw UsageError("--data-out goes with frames to reconstruct, not a CSV");
+  if (csv_input || virtual_input)
+    for (const char* option : {"camera", "video", "size", "fps"})
+      if (args.has(option))
+        throw UsageError(std::string("--") + option + (csv_input ? " does not go with a CSV" : " does not go with --virtual"));
+  if (csv_input && args.has("frames")) throw UsageError("--frames does not go with a CSV");
   DataOut data_out;
   if (const auto path = args.value("data-out")) {
     std::string error;
@@ -122,10 +127,10 @@ int run(const Args& args) {
   std::vector<PoseSample> samples;
   if (csv_input) {
     std::string error;
-    if (!ok(readPoseSeries(args.positionals()[0], fps, samples, error))) throw InputError(error);
+    if (!ok(readPoseSeries(args.positionals()[0], rate_hz, samples, error))) throw InputError(error);
   } else if (virtual_input) {
     if (!args.positionals().empty()) throw UsageError("give either --virtual or input files, not both");
-    settings.virtual_scene.frame_rate_hz = fps;
+    settings.virtual_scene.frame_rate_hz = rate_hz;
     settings.virtual_scene.noise_sigma = args.number("noise", 3.0);
     if (!(settings.virtual_scene.noise_sigma >= 0.0)) throw UsageError("--noise must be 0 or more");
     MotionBlur blur;
@@ -147,10 +152,10 @@ int run(const Args& args) {
       std::string describe() const override { return inner.describe(); }
     } limited(pendulum, frames);
     std::fprintf(stderr, "reconstructing %d frames of the %s ...\n", frames, pendulum.describe().c_str());
-    samples = reconstructSequence(limited, settings, fps, &data_out);
+    samples = reconstructSequence(limited, settings, rate_hz, &data_out);
   } else {
     auto source = openFrameInput(args, settings);
-    samples = reconstructSequence(*source, settings, fps, &data_out);
+    samples = reconstructSequence(*source, settings, rate_hz, &data_out);
   }
   data_out.close();
 
@@ -161,7 +166,7 @@ int run(const Args& args) {
   PendulumAnalysis a;
   const Status status = analyzePendulum(samples, options, a);
   if (!ok(status))
-    throw InputError("pendulum: " + std::string(statusName(status)) + ": " + std::string(statusMessage(status)) +
+    throw InputError(std::string(statusName(status)) + ": " + std::string(statusMessage(status)) +
                      " (" + std::to_string(a.valid_frames) + " of " + std::to_string(samples.size()) +
                      " frames with a pose)");
 
@@ -218,7 +223,7 @@ const CommandRegistration kRegistration{{
     "pendulum",
     "period, length and g from a target on a swinging pendulum (thesis 5.3.2)",
     std::string("usage: imagepro-cli pendulum [--config FILE] [--format text|json] [--plot PREFIX | --no-plot]\n"
-                "                             [--fps N] [--no-amplitude-correction] [--data-out FILE] INPUT\n\n"
+                "                             [--rate HZ] [--no-amplitude-correction] [--data-out FILE] INPUT\n\n"
                 "input: FILE.csv (data out, or the output of imagepro-cli reconstruct)\n"
                 "       or --virtual [--frames N] [--noise SIGMA] [--blur-exposure S [--subframes N]]\n"
                 "          (the Virtual source's pendulum of the settings, grey, default 250 frames, noise 3)\n"
@@ -227,8 +232,9 @@ const CommandRegistration kRegistration{{
         "\n\nThe period comes from the translations over time, the pivot and the length from the\n"
         "constrained sphere fit of thesis eqs. 5.2-5.6, g from eq. 5.1 with the period reduced to\n"
         "a small swing's (the exact pendulum's amplitude correction), each with its uncertainty.\n"
-        "  --fps N                     times of frames without timestamps (default: the settings'\n"
-        "                              virtual frame rate, 25); --virtual renders at this rate\n"
+        "  --rate HZ                   frame rate giving the times of frames without timestamps (image\n"
+        "                              files, CSV without timestamp_s; default: the settings' virtual\n"
+        "                              frame rate, 25); --virtual renders at this rate\n"
         "  --no-amplitude-correction   g by eq. 5.1 with the measured period, as in the thesis\n"
         "  --blur-exposure S           virtual: motion blur, exposure S seconds centred on each frame,\n"
         "                              averaged over --subframes renders (default 8)\n"

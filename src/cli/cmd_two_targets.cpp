@@ -126,6 +126,8 @@ int run(const Args& args) {
 
   if (virtual_input) {
     if (!args.positionals().empty()) throw UsageError("give either --virtual or image files, not both");
+    for (const char* option : {"camera", "video", "size", "fps"})
+      if (args.has(option)) throw UsageError(std::string("--") + option + " does not go with --virtual");
     const std::string lens = args.valueOr("lens", "thesis");
     if (lens == "thesis")
       settings.camera.distortion = kThesisCameraDistortion;
