@@ -16,9 +16,12 @@
 // holds exactly two dark closed paths of the spots' size, one near the centre and the
 // other at spot_offset / radius from it, is the target. When none holds them, and
 // robust_fit is on, paths that enclose such spots but failed the fit (an occluder's
-// straight edges in the contour, thesis fig. 2.28) are refitted by consensus: the best
-// of robust_iterations six-point fits, refitted on its inliers, accepted when it traces
-// robust_min_traced_fraction of the ellipse. Two or more targets give AmbiguousTarget
+// straight edges in the contour, thesis fig. 2.28) are refitted by consensus: the
+// six-point fit whose ellipse the path traces most (at most robust_iterations),
+// refitted on its inliers, accepted when they trace robust_min_traced_fraction of the
+// ellipse. Paths are fitted lazily: detectTarget first fits only white paths with two
+// spot-sized dark paths inside their bounding box, and traces the contour only of an
+// ellipse that holds the spots; detectEllipses fits every path. Two or more targets give AmbiguousTarget
 // (both reported) unless report_all_targets. Without any target, the thesis's rule picks
 // the best ellipse (lowest error, or highest Bennett score), preferring ellipses that
 // hold any dark path over plain disks, unless require_target_spots.
