@@ -71,10 +71,10 @@ QWidget* ellipsePanel(SettingsBinder& binder) {
                             "ellipseMaxSampson", QObject::tr("Largest accepted mean Sampson distance"));
   auto* min_path = named(binder.intSpin([e](Settings& s) -> auto& { return e(s).min_path_pixels; }, 6, 1000000, QStringLiteral(" px")),
                          "ellipseMinPath", QObject::tr("Shorter connected paths are not considered"));
-  auto* min_score = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_min_score; }, 0.0, 1e6, 0), "bennettMinScore");
-  auto* max_score = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_max_score; }, 0.0, 1e6, 0), "bennettMaxScore");
-  auto* min_quality = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_min_quality; }, 0.0, 1e6, 0), "bennettMinQuality");
-  auto* max_quality = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_max_quality; }, 0.0, 1e6, 0), "bennettMaxQuality");
+  auto* min_score = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_min_score; }, 0.0, 1e9, 0), "bennettMinScore");
+  auto* max_score = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_max_score; }, 0.0, 1e9, 0), "bennettMaxScore");
+  auto* min_quality = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_min_quality; }, 0.0, 1e9, 0), "bennettMinQuality");
+  auto* max_quality = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_max_quality; }, 0.0, 1e9, 0), "bennettMaxQuality");
   for (auto* w : {min_score, max_score}) w->setToolTip(QObject::tr("Bennett accumulation score range (thesis 2.6.1, rule 3)"));
   for (auto* w : {min_quality, max_quality}) w->setToolTip(QObject::tr("Bennett quality factor range (thesis 2.6.1, rule 2)"));
   form->addRow(QObject::tr("Accept by"), accept);
