@@ -51,7 +51,8 @@ struct Scene {
 
 void BM_CropToPose(benchmark::State& state) {
   const Scene scene(static_cast<double>(state.range(0)), static_cast<ContourMode>(state.range(1)));
-  const ReconstructionConfig config = reconstructionConfig(scene.settings);
+  ReconstructionConfig config = reconstructionConfig(scene.settings);
+  if (state.range(2) == 0) config.rethreshold.method = ThresholdMethod::None;  // the frame's threshold
   ReconstructionWorkspace ws;
   ReconstructionResult result;
   for (auto _ : state) {
@@ -61,16 +62,19 @@ void BM_CropToPose(benchmark::State& state) {
   }
   state.counters["points"] = static_cast<double>(result.contour.size());
 }
-// (distance mm, contour mode) for every mode at 800 mm; the default mode near and far.
+// (distance mm, contour mode, re-threshold AT-Mod 1 / None 0): every mode at 800 mm; the
+// default mode near and far, and without its own re-threshold.
 BENCHMARK(BM_CropToPose)
-    ->ArgNames({"mm", "mode"})
-    ->Args({800, static_cast<int>(ContourMode::EightPointsOrg)})
-    ->Args({800, static_cast<int>(ContourMode::EightPointsMod)})
-    ->Args({800, static_cast<int>(ContourMode::FullPathOrg)})
-    ->Args({800, static_cast<int>(ContourMode::FullPathMod)})
-    ->Args({800, static_cast<int>(ContourMode::SubPixel)})
-    ->Args({400, static_cast<int>(ContourMode::SubPixel)})
-    ->Args({1200, static_cast<int>(ContourMode::SubPixel)})
+    ->ArgNames({"mm", "mode", "rethreshold"})
+    ->Args({800, static_cast<int>(ContourMode::EightPointsOrg), 1})
+    ->Args({800, static_cast<int>(ContourMode::EightPointsMod), 1})
+    ->Args({800, static_cast<int>(ContourMode::FullPathOrg), 1})
+    ->Args({800, static_cast<int>(ContourMode::FullPathMod), 1})
+    ->Args({800, static_cast<int>(ContourMode::SubPixel), 1})
+    ->Args({400, static_cast<int>(ContourMode::SubPixel), 1})
+    ->Args({1200, static_cast<int>(ContourMode::SubPixel), 1})
+    ->Args({800, static_cast<int>(ContourMode::SubPixel), 0})
+    ->Args({400, static_cast<int>(ContourMode::SubPixel), 0})
     ->Unit(benchmark::kMicrosecond);
 
 void BM_PoseFromEllipse(benchmark::State& state) {

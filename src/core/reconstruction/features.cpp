@@ -20,6 +20,7 @@ constexpr int kSpotBoxGrowPx = 3;
 constexpr double kSpotRimClearancePx = 2.5;  // spot centroids ignore pixels this near the rim
 constexpr double kRaySteps = 16.0;  // 8 points MOD: samples per pixel along a ray
 constexpr double kMinSubPixelContrastFraction = 0.3;
+constexpr double kSubPixelPoints = 160.0;
 
 // The detected ellipse as a quadratic form: rho^2 = P dx^2 + 2 Q dx dy + R dy^2 with
 // (dx, dy) from its centre; rho = 1 on the ellipse.
@@ -111,6 +112,24 @@ void binarizeCrop(const cv::Mat& grey, const cv::Rect& crop, int t, cv::Mat& out
   }
 }
 
+// The first x in [x, x1] with row[x] <= level (x1 + 1 if none): whole blocks of 16 pixels
+// are passed over when none of them is that dark.
+int firstAtMost(const std::uint8_t* row, int x, int x1, std::uint8_t level) {
+  constexpr int kBlock = 16;
+  std::array<std::uint8_t, kBlock> block{}, dark{};
+  for (; x + kBlock <= x1 + 1; x += kBlock) {
+    // A per-pixel flag (vectorised like binarizeCrop), then two words tested at once.
+    std::memcpy(block.data(), row + x, kBlock);
+    for (int i = 0; i < kBlock; ++i) dark[i] = block[i] <= level ? 0xFF : 0;
+    std::uint64_t lo = 0, hi = 0;
+    std::memcpy(&lo, dark.data(), 8);
+    std::memcpy(&hi, dark.data() + 8, 8);
+    if ((lo | hi) != 0) break;
+  }
+  while (x <= x1 && row[x] > level) ++x;
+  return x;
+}
+
 // One image row or column of 8-bit pixels, indexed by its image coordinate k in
 // [first, last]: the grey frame's whole line, or the binary crop's part of it.
 struct PixelLine {
@@ -126,7 +145,7 @@ struct PixelLine {
   }
   bool contains(int k) const { return k >= first && k <= last; }
   double at(int k) const { return data[(k - first) * stride]; }
-  bool white(int k) const { return contains(k) && data[(k - first) * stride] != 0; }
+  bool above(int k, int level) const { return contains(k) && data[(k - first) * stride] > level; }
   bool interp(double x, double& value) const {
     const int k = floorToInt(x);
     if (k < first || k + 1 > last) return false;
@@ -145,8 +164,20 @@ struct BinaryView {
     if (cx < 0 || cy < 0 || cx >= crop.width || cy >= crop.height) return false;
     return binary.ptr<std::uint8_t>(cy)[cx] != 0;
   }
-  PixelLine row(int y) const { return PixelLine::row(binary, y - crop.y, crop.x); }
-  PixelLine column(int x) const { return PixelLine::column(binary, x - crop.x, crop.y); }
+};
+
+// Rows and columns of an image covering `area` (image coordinates), white above `level`:
+// the binary crop (level 0) or the grey frame at the threshold.
+struct ThresholdLines {
+  const cv::Mat& image;
+  cv::Rect area;
+  int level;
+  PixelLine row(int y) const {
+    return y >= area.y && y < area.y + area.height ? PixelLine::row(image, y - area.y, area.x) : PixelLine{};
+  }
+  PixelLine column(int x) const {
+    return x >= area.x && x < area.x + area.width ? PixelLine::column(image, x - area.x, area.y) : PixelLine{};
+  }
 };
 
 // The crop's two grey classes (its mean dark and bright levels).
@@ -387,11 +418,16 @@ void eightPointsMod(const BinaryView& view, const Ellipse& detected, double band
   }
 }
 
-void fullPathMod(const BinaryView& view, const cv::Mat& grey, const Ellipse& detected,
+void fullPathMod(const ThresholdLines& lines, const cv::Rect& crop, const cv::Mat& grey, const Ellipse& detected,
                  double band, bool subPixel, const EdgeLevels& levels,
                  std::vector<Eigen::Vector2d>& out) {
   const EllipseForm form(detected, 1.0);
-  const cv::Rect& c = view.crop;
+  const cv::Rect& c = crop;
+  // SubPixel takes every n-th row and column on a large rim: about kSubPixelPoints evenly
+  // spread points (a rim crosses about 2 sqrt(2) (a + b) rows and columns) are as good as
+  // all of them to a few per cent of the error and cost a fraction of the time.
+  const int lineStep =
+      subPixel ? std::max(1, roundToInt(2.0 * M_SQRT2 * (detected.a + detected.b) / kSubPixelPoints)) : 1;
   // One crossing of a row or column with the rim, expected at `e`, the run inside the rim
   // along that line being `run` long; `in` points towards the inside.
   auto crossing = [&](const PixelLine& binary, const PixelLine& greyLine, double e, int in, double run,
@@ -403,16 +439,16 @@ void fullPathMod(const BinaryView& view, const cv::Mat& grey, const Ellipse& det
       if (refineCrossing(greyLine, in, levels, std::min(run, curvature), at)) return true;
     }
     const int start = roundToInt(e - in * band), end = roundToInt(e + in * band);
-    const int k = firstRimPixel(start, end, in, [&](int j) { return binary.white(j); });
+    const int k = firstRimPixel(start, end, in, [&](int j) { return binary.above(j, lines.level); });
     if (k == INT32_MIN) return false;
     at = k - in * 0.5;
     return !subPixel || refineCrossing(greyLine, in, levels, std::min(run, curvature), at);
   };
   // Rows cross the parts of the rim whose normal is closer to horizontal.
-  for (int y = c.y; y < c.y + c.height; ++y) {
+  for (int y = c.y; y < c.y + c.height; y += lineStep) {
     double xs[2];
     if (!form.rowCrossings(y, xs[0], xs[1])) continue;
-    const PixelLine binary = view.row(y), greyLine = PixelLine::row(grey, y);
+    const PixelLine binary = lines.row(y), greyLine = PixelLine::row(grey, y);
     for (int side = 0; side < 2; ++side) {
       if (!form.normalMostlyHorizontal(xs[side], y)) continue;
       double x;
@@ -422,10 +458,10 @@ void fullPathMod(const BinaryView& view, const cv::Mat& grey, const Ellipse& det
     }
   }
   // Columns cross the rest.
-  for (int x = c.x; x < c.x + c.width; ++x) {
+  for (int x = c.x; x < c.x + c.width; x += lineStep) {
     double ys[2];
     if (!form.columnCrossings(x, ys[0], ys[1])) continue;
-    const PixelLine binary = view.column(x), greyLine = PixelLine::column(grey, x);
+    const PixelLine binary = lines.column(x), greyLine = PixelLine::column(grey, x);
     for (int side = 0; side < 2; ++side) {
       if (form.normalMostlyHorizontal(x, ys[side])) continue;
       double y;
@@ -496,8 +532,9 @@ Status rethresholdCrop(const cv::Mat& grey, const cv::Rect& crop, const Threshol
   } else if (const Status s = computeThreshold(rethreshold, ws.histogram, threshold); !ok(s)) {
     return s;
   }
-  binarizeCrop(grey, crop, threshold, ws.binary);
+  ws.crop = crop;
   ws.threshold = threshold;
+  classMeans(ws.histogram, threshold, ws.dark_mean, ws.bright_mean);
   return Status::Ok;
 }
 
@@ -505,22 +542,25 @@ Status extractContour(ContourMode mode, const cv::Mat& grey, const cv::Rect& cro
                       const Ellipse& detected, FeatureWorkspace& ws,
                       std::vector<Eigen::Vector2d>& points) {
   points.clear();
-  if (ws.binary.rows != crop.height || ws.binary.cols != crop.width) return Status::EmptyFrame;
-  const BinaryView view{ws.binary, crop};
+  if (grey.empty() || grey.type() != CV_8UC1 || ws.threshold < 0 || ws.crop != crop) return Status::EmptyFrame;
   const double band = contourBandPx(detected);
+  if (mode == ContourMode::SubPixel) {
+    // The grey frame itself, its binary crossing taken at the threshold on the fly.
+    const EdgeLevels levels{ws.dark_mean, ws.bright_mean};
+    fullPathMod(ThresholdLines{grey, {0, 0, grey.cols, grey.rows}, ws.threshold}, crop, grey, detected, band, true,
+                levels, points);
+    return points.size() >= 6 ? Status::Ok : Status::TooFewPoints;
+  }
+  binarizeCrop(grey, crop, ws.threshold, ws.binary);
+  const BinaryView view{ws.binary, crop};
   switch (mode) {
     case ContourMode::EightPointsOrg: eightPointsOrg(view, detected, points); break;
     case ContourMode::EightPointsMod: eightPointsMod(view, detected, band, points); break;
     case ContourMode::FullPathOrg: fullPathOrg(view, ws, points); break;
     case ContourMode::FullPathMod:
-      fullPathMod(view, grey, detected, band, false, EdgeLevels{}, points);
+      fullPathMod(ThresholdLines{ws.binary, crop, 0}, crop, grey, detected, band, false, EdgeLevels{}, points);
       break;
-    case ContourMode::SubPixel: {
-      EdgeLevels levels;
-      classMeans(ws.histogram, ws.threshold, levels.dark, levels.bright);
-      fullPathMod(view, grey, detected, band, true, levels, points);
-      break;
-    }
+    case ContourMode::SubPixel: break;
   }
   return points.size() >= 6 ? Status::Ok : Status::TooFewPoints;
 }
@@ -528,15 +568,13 @@ Status extractContour(ContourMode mode, const cv::Mat& grey, const cv::Rect& cro
 Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& detected,
                     const TargetGeometry& target, FeatureWorkspace& ws, SpotFeatures& spots) {
   spots.candidates = 0;
-  if (ws.binary.rows != crop.height || ws.binary.cols != crop.width) return Status::EmptyFrame;
+  if (grey.empty() || grey.type() != CV_8UC1 || ws.threshold < 0 || ws.crop != crop) return Status::EmptyFrame;
   const EllipseForm inner(detected, kSpotSearchScale);
   // Spots are cut at the middle of the crop's two class means rather than at the threshold
   // itself: a minimum-error threshold near one class's level (as under blur) would swell
   // or shrink them, and merge two spots seen close together.
-  double dark = 0.0, bright = 255.0;
-  classMeans(ws.histogram, ws.threshold, dark, bright);
-  const int spotLevel = static_cast<int>(std::floor(0.5 * (dark + bright)));
-  binarizeCrop(grey, crop, spotLevel, ws.dark);  // 0 where dark enough for a spot
+  const double bright = ws.bright_mean;
+  const auto spotLevel = static_cast<std::uint8_t>(std::clamp(floorToInt(0.5 * (ws.dark_mean + ws.bright_mean)), 0, 255));
   std::vector<SpotRun>& runs = ws.runs;
   runs.clear();
   // Black runs inside the search ellipse, row by row; each run is joined to the
@@ -549,13 +587,12 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
     if (inner.rowCrossings(y, xl, xr)) {
       const int x0 = std::max(ceilToInt(xl), crop.x) - crop.x;
       const int x1 = std::min(floorToInt(xr), crop.x + crop.width - 1) - crop.x;
-      const std::uint8_t* row = ws.dark.ptr<std::uint8_t>(r);
+      const std::uint8_t* row = grey.ptr<std::uint8_t>(y) + crop.x;
       for (int x = x0; x <= x1;) {
-        const void* hit = std::memchr(row + x, 0, static_cast<std::size_t>(x1 - x + 1));
-        if (hit == nullptr) break;
-        x = static_cast<int>(static_cast<const std::uint8_t*>(hit) - row);
+        x = firstAtMost(row, x, x1, spotLevel);
+        if (x > x1) break;
         const int start = x;
-        while (x <= x1 && row[x] == 0) ++x;
+        while (x <= x1 && row[x] <= spotLevel) ++x;
         const int id = static_cast<int>(runs.size());
         runs.push_back({r, start, x - 1, id});
         for (std::size_t p = prevBegin; p < prevEnd; ++p) {

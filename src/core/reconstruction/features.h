@@ -31,7 +31,8 @@
 //    neither too curved nor too close to its far side, to the position the area under the
 //    profile gives over 9 pixels (each pixel's level scaled between the plateaus is its white
 //    fraction): exact for a straight edge under any area-preserving blur, where the linear
-//    interpolation errs by up to 0.2 px on a sharp anti-aliased edge.
+//    interpolation errs by up to 0.2 px on a sharp anti-aliased edge. On a large rim only
+//    every n-th row and column is taken, for about 160 points: more add little accuracy.
 // Spots: the dark 8-connected components (grey at most the middle of the crop's two class
 // means, so that a threshold close to one class cannot swell, shrink or merge them) inside
 // 0.85 of the detected ellipse with an area
@@ -63,10 +64,11 @@ struct SpotComponent {
 
 struct FeatureWorkspace {
   Histogram histogram{};  // of the crop
+  cv::Rect crop;          // the crop the threshold belongs to
   int threshold = -1;     // the crop's threshold
-  cv::Mat binary;         // the re-thresholded crop: 255 white, 0 black
+  double dark_mean = 0.0, bright_mean = 255.0;  // grey means of the classes [0, t], [t+1, 255]
+  cv::Mat binary;         // the re-thresholded crop, 255 white, 0 black (modes other than SubPixel)
   cv::Mat visited;        // full path ORG: pixels already taken
-  cv::Mat dark;           // the crop cut at the spots' level: 0 where dark
   std::vector<SpotRun> runs;
   std::vector<int> componentOf;  // per root run: its component's index
   std::vector<SpotComponent> components;
@@ -85,14 +87,14 @@ double contourBandPx(const Ellipse& detected);
 // OutOfImage when nothing of it is in the image.
 Status targetCrop(const Ellipse& detected, int marginPx, cv::Size imageSize, cv::Rect& crop);
 
-// Re-thresholds grey(crop) into ws.binary. None keeps the frame's own threshold
-// `frameThreshold` (InvalidSettings when that is negative); the others compute it on the
-// crop's histogram (ThresholdUndefined on a flat crop).
+// The crop's threshold, from its own histogram (ThresholdUndefined on a flat crop), or with
+// None the frame's own threshold `frameThreshold` (InvalidSettings when that is negative).
+// The binary crop itself is made by extractContour for the modes that read it.
 Status rethresholdCrop(const cv::Mat& grey, const cv::Rect& crop, const ThresholdOptions& rethreshold,
                        int frameThreshold, FeatureWorkspace& ws, int& threshold);
 
-// Contour points of the rim (image px) by `mode`, from the binary crop (and, for SubPixel,
-// the grey frame). TooFewPoints when fewer than 6 are found.
+// Contour points of the rim (image px) by `mode` after rethresholdCrop: from the binary crop,
+// or for SubPixel from the grey levels. TooFewPoints when fewer than 6 are found.
 Status extractContour(ContourMode mode, const cv::Mat& grey, const cv::Rect& crop,
                       const Ellipse& detected, FeatureWorkspace& ws,
                       std::vector<Eigen::Vector2d>& points);

@@ -75,14 +75,15 @@ TEST_F(FeatureTest, RethresholdMethods) {
   // Between the disk's white and the card's black.
   EXPECT_GT(threshold, scene.black_level);
   EXPECT_LT(threshold, scene.white_level);
-  EXPECT_EQ(ws.binary.size(), crop.size());
   EXPECT_EQ(rethresholdCrop(image, crop, {ThresholdMethod::None, 0}, 77, ws, threshold), Status::Ok);
   EXPECT_EQ(threshold, 77);
   EXPECT_EQ(rethresholdCrop(image, crop, {ThresholdMethod::None, 0}, -1, ws, threshold),
             Status::InvalidSettings);
   EXPECT_EQ(rethresholdCrop(image, crop, {ThresholdMethod::Manual, 99}, -1, ws, threshold), Status::Ok);
   EXPECT_EQ(threshold, 99);
-  // The binary crop is grey > t.
+  // The binary crop the pixel modes read is grey > t.
+  ASSERT_EQ(extractContour(ContourMode::FullPathMod, image, crop, e, ws, points), Status::Ok);
+  ASSERT_EQ(ws.binary.size(), crop.size());
   for (int y = 0; y < crop.height; y += 7)
     for (int x = 0; x < crop.width; x += 5)
       EXPECT_EQ(ws.binary.at<uchar>(y, x) != 0, image.at<uchar>(crop.y + y, crop.x + x) > 99);
@@ -121,7 +122,8 @@ TEST_F(FeatureTest, ContourModesAgainstTheTrueRim) {
   ASSERT_EQ(prepare(pose, e), Status::Ok);
   ASSERT_EQ(extractContour(ContourMode::SubPixel, image, crop, e, ws, points), Status::Ok);
   d = deviations(pose);
-  EXPECT_GT(points.size(), 250u);
+  EXPECT_GT(points.size(), 120u);  // every other row and column: about 160 points
+  EXPECT_LT(points.size(), 200u);
   EXPECT_LT(std::abs(mean(d)), 0.03);
   EXPECT_LT(maxAbs(d), 0.25);  // linear interpolation across a sharp anti-aliased edge
 
@@ -130,7 +132,7 @@ TEST_F(FeatureTest, ContourModesAgainstTheTrueRim) {
   ASSERT_EQ(prepare(pose, e), Status::Ok);
   ASSERT_EQ(extractContour(ContourMode::SubPixel, image, crop, e, ws, points), Status::Ok);
   d = deviations(pose);
-  EXPECT_GT(points.size(), 200u);
+  EXPECT_GT(points.size(), 100u);
   EXPECT_LT(std::abs(mean(d)), 0.05);
   EXPECT_LT(maxAbs(d), 0.2);
 }
