@@ -355,7 +355,7 @@ int run(const Args& args) {
   md += format("| position error, 95th percentile | (no worse than ArUco) | %.3f %% | %.3f %% |\n\n", ours.posP95,
                aruco.posP95);
 
-  md += "Reading the tables (the contour modes are defined in src/core/reconstruction/features.h):\n\n"
+  md += "Reading the tables (the methods are described in docs/reconstruction.md):\n\n"
         "* The ORG contour modes take pixel centres, on average inside the rim, so the ellipse is too small and "
         "the distance too large; 8 points ORG also stops at a spot or blemish on its rays.\n"
         "* Full path MOD puts its points on the binary crossing of the re-threshold. The minimum-error threshold "

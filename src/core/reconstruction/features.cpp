@@ -335,9 +335,10 @@ int firstRimPixel(int start, int end, int in, IsWhite isWhite) {
   return INT32_MIN;
 }
 
-void fullPathOrg(const BinaryView& view, FeatureWorkspace& ws, std::vector<Eigen::Vector2d>& out) {
+void fullPathOrg(const BinaryView& view, cv::Size imageSize, FeatureWorkspace& ws,
+                 std::vector<Eigen::Vector2d>& out) {
   const cv::Rect& c = view.crop;
-  ws.visited.create(c.height, c.width, CV_8UC1);
+  reuseBuffer(ws.visited, c.size(), imageSize);  // an allocation the frame's size, kept
   ws.visited.setTo(0);
   auto take = [&](int x, int y) {
     std::uint8_t& seen = ws.visited.ptr<std::uint8_t>(y - c.y)[x - c.x];
@@ -556,7 +557,7 @@ Status extractContour(ContourMode mode, const cv::Mat& grey, const cv::Rect& cro
   switch (mode) {
     case ContourMode::EightPointsOrg: eightPointsOrg(view, detected, points); break;
     case ContourMode::EightPointsMod: eightPointsMod(view, detected, band, points); break;
-    case ContourMode::FullPathOrg: fullPathOrg(view, ws, points); break;
+    case ContourMode::FullPathOrg: fullPathOrg(view, grey.size(), ws, points); break;
     case ContourMode::FullPathMod:
       fullPathMod(ThresholdLines{ws.binary, crop, 0}, crop, grey, detected, band, false, EdgeLevels{}, points);
       break;
