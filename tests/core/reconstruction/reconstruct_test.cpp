@@ -7,6 +7,7 @@
 #include <random>
 
 #include "core/ellipse/direct_fit.h"
+#include "core/pipeline/engine.h"
 #include "core/source/virtual_renderer.h"
 #include "status_print.h"
 #include "test_scenes.h"
@@ -216,6 +217,38 @@ TEST_F(ReconstructTest, NamedErrorsAndTheStepThatGaveThem) {
   EXPECT_EQ(reconstructTarget(settings, moved, e, 128, ws, result), Status::SpotsNotFound);
   EXPECT_EQ(result.steps.fit, Status::Ok);
   EXPECT_EQ(result.steps.pose, Status::SpotsNotFound);
+}
+
+// The whole chain as the pipeline runs it: the target found by the detection stage in grey
+// frames with noise, blur, gradient, clutter and lens distortion, then reconstructed.
+TEST_F(ReconstructTest, RoundTripThroughTheDetectionStage) {
+  settings.pipeline.tracking.mode = TrackingMode::Off;
+  settings.virtual_scene.noise_sigma = 2.0;
+  settings.virtual_scene.blur_sigma_px = 0.7;
+  settings.virtual_scene.illumination_gradient = 0.15;
+  settings.virtual_scene.clutter = 6;
+  Engine engine(settings);
+  Frame frame;
+  FrameResult result;
+  std::vector<double> rot, pos;
+  int k = 0;
+  for (const Pose& truth : poseGrid()) {
+    if (testing::viewAngleDeg(truth) > 62.0) continue;  // the study's range
+    renderTarget(settings.camera, settings.target, settings.virtual_scene, truth, frame.image, ++k);
+    frame.index = k;
+    engine.process(frame, result);
+    ASSERT_EQ(result.status, Status::Ok) << truth.tz_mm << " " << truth.rx_deg << " " << truth.ry_deg;
+    ASSERT_TRUE(result.pose.has_value());
+    rot.push_back(rotationErrorDeg(truth, *result.pose));
+    pos.push_back(positionErrorPercent(truth, *result.pose));
+    EXPECT_LT(rot.back(), testing::viewAngleDeg(truth) < 1.0 ? 3.0 : 1.0) << truth.tz_mm << " " << truth.rz_deg;
+    EXPECT_LT(pos.back(), 0.3) << truth.tz_mm << " " << truth.rz_deg;
+  }
+  std::printf("through detection: %zu frames, rotation median %.4f p95 %.4f deg, position median %.4f p95 %.4f %%\n",
+              rot.size(), quantile(rot, 0.5), quantile(rot, 0.95), quantile(pos, 0.5), quantile(pos, 0.95));
+  EXPECT_GT(rot.size(), 50u);
+  EXPECT_LT(quantile(rot, 0.5), 0.1);
+  EXPECT_LT(quantile(pos, 0.5), 0.05);
 }
 
 }  // namespace
