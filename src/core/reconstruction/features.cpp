@@ -1,7 +1,5 @@
 #include "core/reconstruction/features.h"
 
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -240,6 +238,8 @@ bool areaCrossing(const Line& line, int in, const EdgeLevels& levels, double roo
   return true;
 }
 
+// The crossing nearest x0 of the grey level with the mean of the two plateaus sampled 2.5
+// and 3.5 px either side of x0, the profile interpolated linearly between pixels.
 template <typename Line>
 bool linearCrossing(const Line& line, int in, const EdgeLevels& levels, double& x0) {
   constexpr int kSearchPx = 3;
@@ -291,6 +291,11 @@ struct LineWindow {
   }
 };
 
+// A rim crossing near x0 on a grey line, `in` (+1 or -1) pointing towards white: the area
+// estimate when its window holds one clean edge (once more if it moved the window's
+// centre); otherwise the linear crossing, whose plateaus are re-centred on each new
+// crossing until it settles (a start a pixel or two off the mid-level, as from a threshold
+// near one class under blur), then the area estimate again if it now fits.
 bool refineCrossing(const PixelLine& line, int in, const EdgeLevels& levels, double roomPx, double& x0) {
   constexpr int kMaxPasses = 4;
   LineWindow w;

@@ -24,15 +24,15 @@
 //    the 8 rays (k * 45 deg in the image) from the detected centre inwards in 1/16 px
 //    steps. Full path MOD scans rows across the parts of the rim that run closer to
 //    vertical and columns across the rest, one point per row or column crossing.
-//  * SubPixel (beyond the thesis, its recommendation 6.3): the crossings of full path MOD,
-//    moved first to where the grey level, interpolated linearly along the row or column,
-//    crosses the mean of the two plateaus 2.5-3.5 px either side (the edge's own mid-level,
-//    independent of the threshold, of blur and of illumination), then, where the rim is
-//    neither too curved nor too close to its far side, to the position the area under the
-//    profile gives over 9 pixels (each pixel's level scaled between the plateaus is its white
-//    fraction): exact for a straight edge under any area-preserving blur, where the linear
-//    interpolation errs by up to 0.2 px on a sharp anti-aliased edge. On a large rim only
-//    every n-th row and column is taken, for about 160 points: more add little accuracy.
+//  * SubPixel (beyond the thesis, its recommendation 6.3): full path MOD's crossings, placed
+//    in the grey levels, starting from the detected rim (from the binary crossing where that
+//    fails): by the area under the profile over 9 pixels (each pixel's level scaled between
+//    the plateaus beyond them is its white fraction), exact for a straight edge under any
+//    area-preserving blur; where the rim is too curved or too thin for that window, or the
+//    window holds more than one edge, where the profile interpolated linearly crosses the
+//    mean of its two plateaus. Independent of the threshold, of blur and of illumination.
+//    On a large rim only every n-th row and column is taken, for about 160 points: more add
+//    little accuracy.
 // Spots: the dark 8-connected components (grey at most the middle of the crop's two class
 // means, so that a threshold close to one class cannot swell, shrink or merge them) inside
 // 0.85 of the detected ellipse with an area
