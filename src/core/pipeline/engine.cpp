@@ -110,7 +110,12 @@ void Engine::Impl::run(FrameResult& out) {
   last_track_time = t;
 
   auto start = Clock::now();
-  out.search_region = tracker.estimate(o.tracking, settings.camera, settings.target, t, grey.size()).value_or(whole);
+  // Only a stream is tracked (thesis appendix A: camera and virtual input). Image files
+  // carry their name and are separate stills: the last one says nothing about the next.
+  const bool stream = frame.name.empty();
+  if (!stream) tracker.reset();
+  out.search_region =
+      stream ? tracker.estimate(o.tracking, settings.camera, settings.target, t, grey.size()).value_or(whole) : whole;
   // The whole frame needs no copy: threshold it in place. A tracked region is copied
   // into the engine's own buffer, never into the frame's (another view may share it).
   const bool whole_frame = out.search_region == whole;

@@ -164,6 +164,21 @@ TEST(Engine, FileSequenceErrorsAreRowsAndTheLoopGoesOn) {
   EXPECT_EQ(statuses[3], Status::Ok);
 }
 
+// Still images are not a motion: a file never limits the search in the next one.
+TEST(Engine, ImageFilesAreSearchedWhole) {
+  Settings s = binaryScene({});
+  Engine engine(s);
+  FrameResult r;
+  const Pose poses[] = {{0, 0, 0, -150, -80, 800}, {0, 0, 0, -140, -70, 800}, {0, 30, 0, 160, 90, 800}};
+  for (int i = 0; i < 3; ++i) {
+    Frame f = render(s, poses[i], i);
+    f.name = "still" + std::to_string(i) + ".png";
+    engine.process(f, r);
+    EXPECT_EQ(r.status, Status::Ok) << i;
+    EXPECT_EQ(r.search_region, cv::Rect(0, 0, 640, 480)) << i;
+  }
+}
+
 // Thesis 3.4's goal: the target wholly inside the estimated region in every frame.
 TEST(Engine, TrackedRegionAlwaysHoldsTheTarget) {
   for (const MotionKind motion : {MotionKind::Sinusoid, MotionKind::SawTooth, MotionKind::Pendulum}) {
