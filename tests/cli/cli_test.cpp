@@ -27,7 +27,8 @@ struct CliRun {
 
 // Runs the CLI with `args`, capturing stdout and stderr through files.
 CliRun cli(const std::string& args) {
-  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / "cli";
+  // ctest runs the tests in parallel processes: each captures into files of its own.
+  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / ("cli_" + std::to_string(getpid()));
   fs::create_directories(dir);
   const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
   const std::string command = std::string(IMAGEPRO_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
@@ -114,6 +115,7 @@ TEST(Cli, ReconstructWritesARowPerFrameEvenForBadFiles) {
 TEST(Cli, ReconstructJson) {
   const CliRun r = cli("reconstruct --virtual --frames 2 --format json");
   EXPECT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_FALSE(r.out.empty()) << r.err;
   EXPECT_EQ(r.out.front(), '[');
   EXPECT_NE(r.out.find("\"Tz_mm\""), std::string::npos);
 }
