@@ -10,20 +10,13 @@
 
 #include "cli/command.h"
 #include "core/calibration/calibrate.h"
-#include "core/common/atomic_file.h"
+#include "core/calibration/calibration_file.h"
 #include "core/source/image_file.h"
 
 namespace imagepro::cli {
 namespace {
 
 using json = nlohmann::ordered_json;
-
-std::string cameraSection(const Settings& settings) {
-  const json all = json::parse(settingsToJson(settings));
-  json out;
-  out["camera"] = all.at("camera");
-  return out.dump(2) + "\n";
-}
 
 json resultJson(const CalibrationResult& r) {
   json j;
@@ -100,7 +93,7 @@ int run(const Args& args) {
     std::printf("converged in %d iterations; RMS residual %.4f px\n", result.iterations, result.rms_residual_px);
   settings.camera.distortion = result.distortion;
   std::string error;
-  if (!writeFileAtomically(*out, cameraSection(settings), error, true)) throw InputError(error);
+  if (!writeCalibrationFile(*out, settings, error)) throw InputError(error);
   if (text) std::printf("wrote %s\n", out->c_str());
   return 0;
 }
