@@ -4,6 +4,8 @@
 // and the settings file (settings.h) all read and write it.
 #include <array>
 #include <cstdint>
+#include <map>
+#include <string>
 
 #include "core/common/geometry.h"
 
@@ -205,6 +207,16 @@ struct VirtualSceneOptions {
   PendulumOptions pendulum;
   double key_step_mm = 5.0;         // per key press (appendix A keys)
   double key_step_deg = 1.0;
+};
+
+// The Camera source (thesis 2.2: the frame grabber, here a V4L2 device): which device,
+// at which size and rate, and the device controls set after opening it.
+struct CameraSourceOptions {
+  std::string device = "/dev/video0";
+  int width = 0;   // 0 (width or height): the camera model's size, camera.width x camera.height
+  int height = 0;
+  double frame_rate_hz = 25.0;  // thesis 5.2.1; 0: the driver's own rate
+  std::map<std::string, std::int64_t> controls;  // control key (imagepro-cli devices) -> value
 };
 
 }  // namespace imagepro

@@ -2,7 +2,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <vector>
 
@@ -84,6 +86,14 @@ void visitSettings(Visitor& v, Settings& s) {
     });
     v.field("key_step_mm", o.key_step_mm, 0.0, kInf);
     v.field("key_step_deg", o.key_step_deg, 0.0, 180.0);
+  });
+  v.object("camera_source", [&] {
+    CameraSourceOptions& o = s.camera_source;
+    v.field("device", o.device);
+    v.field("width", o.width, 0, 100000);
+    v.field("height", o.height, 0, 100000);
+    v.field("frame_rate_hz", o.frame_rate_hz, 0.0, 1e6);
+    v.field("controls", o.controls);
   });
   v.object("pipeline", [&] {
     PipelineOptions& p = s.pipeline;
@@ -184,6 +194,31 @@ class Reader {
     }
   }
 
+  void field(const char* key, std::string& value) {
+    if (const json* j = enter(key)) {
+      if (!j->is_string() || j->get<std::string>().empty()) fail(path(key), "expected a non-empty string");
+      value = j->get<std::string>();
+    }
+  }
+
+  // Names of the caller's choosing (camera control keys) with whole numbers.
+  void field(const char* key, std::map<std::string, std::int64_t>& value) {
+    const json* j = enter(key);
+    if (!j) return;
+    if (!j->is_object()) fail(path(key), "expected an object of names and whole numbers");
+    std::map<std::string, std::int64_t> parsed;
+    for (const auto& [name, item] : j->items()) {
+      const std::string where = path(key) + "." + name;
+      const bool well_formed = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+      });
+      if (!well_formed) fail(where, "a name of lower-case letters, digits and '_' expected");
+      parsed[name] = number<std::int64_t>(item, where, std::numeric_limits<std::int64_t>::min(),
+                                          std::numeric_limits<std::int64_t>::max());
+    }
+    value = std::move(parsed);
+  }
+
   template <class E>
     requires OptionEnum<E>
   void field(const char* key, E& value) {
@@ -277,6 +312,11 @@ class Writer {
   }
 
   void field(const char* key, bool& value) { (*stack_.back())[key] = value; }
+  void field(const char* key, std::string& value) { (*stack_.back())[key] = value; }
+  void field(const char* key, std::map<std::string, std::int64_t>& value) {
+    json& object = (*stack_.back())[key] = json::object();
+    for (const auto& [name, v] : value) object[name] = v;
+  }
 
   template <class E>
     requires OptionEnum<E>

@@ -17,6 +17,7 @@ struct Settings {
   TargetGeometry target;
   PatternGeometry pattern;
   VirtualSceneOptions virtual_scene;
+  CameraSourceOptions camera_source;
   PipelineOptions pipeline;
 };
 

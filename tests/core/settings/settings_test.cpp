@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
 
 #include "core/common/atomic_file.h"
 #include "core/settings/enum_names.h"
@@ -31,6 +32,51 @@ TEST(Settings, DefaultsRoundTrip) {
   EXPECT_EQ(settingsToJson(b), text);
   EXPECT_EQ(b.pipeline.threshold.manual_value, 77);
   EXPECT_DOUBLE_EQ(b.camera.distortion.k2, kThesisCameraDistortion.k2);
+}
+
+TEST(Settings, CameraSourceRoundTrip) {
+  Settings a;
+  a.camera_source.device = "/dev/video2";
+  a.camera_source.width = 1280;
+  a.camera_source.height = 720;
+  a.camera_source.frame_rate_hz = 30.0;
+  a.camera_source.controls = {{"brightness", -12}, {"exposure_time_absolute", 250}, {"white_balance_automatic", 0}};
+  const std::string text = settingsToJson(a);
+  Settings b;
+  std::string err;
+  ASSERT_EQ(settingsFromJson(text, b, err), Status::Ok) << err;
+  EXPECT_EQ(b.camera_source.device, "/dev/video2");
+  EXPECT_EQ(b.camera_source.width, 1280);
+  EXPECT_EQ(b.camera_source.height, 720);
+  EXPECT_EQ(b.camera_source.frame_rate_hz, 30.0);
+  EXPECT_EQ(b.camera_source.controls, a.camera_source.controls);
+  EXPECT_EQ(settingsToJson(b), text);
+  // A file's controls replace the defaults' (none) as a whole; a missing section keeps them.
+  ASSERT_EQ(settingsFromJson(R"({"camera_source": {"controls": {"gain": 7}}})", b, err), Status::Ok) << err;
+  EXPECT_EQ(b.camera_source.controls, (std::map<std::string, std::int64_t>{{"gain", 7}}));
+  EXPECT_EQ(b.camera_source.device, "/dev/video2");
+  // The defaults: the thesis's 25 frames/s at the camera model's size, no controls touched.
+  const CameraSourceOptions defaults;
+  EXPECT_EQ(defaults.width, 0);
+  EXPECT_EQ(defaults.frame_rate_hz, 25.0);
+  EXPECT_TRUE(defaults.controls.empty());
+}
+
+TEST(Settings, CameraSourceErrorsNameTheKey) {
+  EXPECT_NE(loadError(R"({"camera_source": {"device": ""}})").find("camera_source.device: expected a non-empty string"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"camera_source": {"device": 0}})").find("camera_source.device"), std::string::npos);
+  EXPECT_NE(loadError(R"({"camera_source": {"width": -1}})").find("camera_source.width"), std::string::npos);
+  EXPECT_NE(loadError(R"({"camera_source": {"frame_rate_hz": -5}})").find("camera_source.frame_rate_hz"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"camera_source": {"controls": {"gain": 1.5}}})")
+                .find("camera_source.controls.gain: expected a whole number"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"camera_source": {"controls": {"Gain": 1}}})").find("camera_source.controls.Gain"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"camera_source": {"controls": [1]}})").find("camera_source.controls: expected an object"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"camera_source": {"fps": 30}})").find("camera_source.fps: unknown key"), std::string::npos);
 }
 
 TEST(Settings, ArchitectureExampleLoads) {
