@@ -405,6 +405,7 @@ int FakeDevice::handle(unsigned long request, void* arg) {
         if (c.query.flags & (V4L2_CTRL_FLAG_READ_ONLY | V4L2_CTRL_FLAG_INACTIVE)) return fail(EACCES);
         if (v.value < c.query.minimum || v.value > c.query.maximum) return fail(ERANGE);
         c.value = v.value;
+        if (after_set) after_set(v.id, v.value);
         return 0;
       }
       return fail(EINVAL);

@@ -63,6 +63,8 @@ class FakeDevice final : public DeviceIo {
   bool timeperframe = true;                             // frame interval settable
   std::uint32_t max_buffers = 8;
   int streamon_errno = 0;
+  // Runs after a control is set (a driver making dependent controls active or inactive).
+  std::function<void(std::uint32_t id, std::int64_t value)> after_set;
 
   // ---- the stream
   bool stalled = false;                   // no frame arrives
