@@ -1,8 +1,9 @@
 #include "cli/frame_input.h"
 
+#include <cstdio>
 #include <filesystem>
 
-#include "core/camera/camera_source.h"
+#include "core/camera/camera_settings.h"
 #include "core/camera/video_file.h"
 #include "core/source/image_file.h"
 #include "core/source/sources.h"
@@ -66,17 +67,8 @@ void parseSize(const std::string& text, int& width, int& height) {
 
 std::unique_ptr<FrameSource> openCameraOrVideo(const Args& args, const Settings& settings) {
   std::unique_ptr<FrameSource> source;
-  if (const auto device = args.value("camera")) {
-    CameraRequest request;
-    request.device = *device;
-    request.width = settings.camera.width;
-    request.height = settings.camera.height;
-    if (const auto size = args.value("size")) parseSize(*size, request.width, request.height);
-    request.frame_rate_hz = args.number("fps", request.frame_rate_hz);
-    if (!(request.frame_rate_hz > 0.0)) throw UsageError("--fps must be above 0");
-    auto camera = std::make_unique<CameraSource>(request);
-    if (!ok(camera->start())) throw InputError(camera->lastError());
-    source = std::make_unique<EndAfterCameraFailure>(std::move(camera));
+  if (args.has("camera")) {
+    source = std::make_unique<EndAfterCameraFailure>(openCamera(args, settings));
   } else {
     if (args.has("size") || args.has("fps")) throw UsageError("--size and --fps go with --camera");
     auto video = std::make_unique<VideoFileSource>(*args.value("video"), VideoPacing::AsFastAsPossible);
@@ -90,6 +82,20 @@ std::unique_ptr<FrameSource> openCameraOrVideo(const Args& args, const Settings&
 }
 
 }  // namespace
+
+std::unique_ptr<CameraSource> openCamera(const Args& args, const Settings& settings) {
+  CameraRequest request = cameraRequest(settings);
+  request.device = args.valueOr("camera", request.device);
+  if (const auto size = args.value("size")) parseSize(*size, request.width, request.height);
+  request.frame_rate_hz = args.number("fps", request.frame_rate_hz);
+  if (args.has("fps") && !(request.frame_rate_hz > 0.0)) throw UsageError("--fps must be above 0");
+  auto camera = std::make_unique<CameraSource>(request);
+  if (!ok(camera->start())) throw InputError(camera->lastError());
+  std::vector<std::string> problems;
+  applyStoredControls(*camera, settings.camera_source.controls, problems);
+  for (const std::string& p : problems) std::fprintf(stderr, "warning: %s\n", p.c_str());
+  return camera;
+}
 
 std::unique_ptr<FrameSource> openFrameInput(const Args& args, const Settings& settings) {
   const int inputs = args.has("virtual") + args.has("camera") + args.has("video") + !args.positionals().empty();

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cli/command.h"
+#include "core/camera/camera_source.h"
 #include "core/source/source.h"
 
 namespace imagepro::cli {
@@ -16,13 +17,21 @@ namespace imagepro::cli {
 // first failure that needs a restart (CameraDisconnected ...), which is reported.
 std::unique_ptr<FrameSource> openFrameInput(const Args& args, const Settings& settings);
 
+// The camera of --camera DEV, streaming: the settings' camera_source size and rate
+// (its size 0 x 0: the camera model's) unless --size WxH, --fps N; then its stored
+// controls, each one the device lacks or refuses a warning on stderr. Throws
+// UsageError for a malformed --size / --fps, InputError naming the device when it
+// cannot be opened (CameraNotFound ...).
+std::unique_ptr<CameraSource> openCamera(const Args& args, const Settings& settings);
+
 // The option names openFrameInput reads, for rejectUnknown and --help.
 inline const std::vector<std::string> kFrameInputOptions{"virtual", "frames", "camera", "size", "fps", "video"};
 inline constexpr const char* kFrameInputHelp =
     "input: IMAGES... (files, folders in natural order, or .txt lists of paths)\n"
     "       or --virtual [--frames N] (the Virtual source of the settings, default 100 frames)\n"
-    "       or --camera /dev/videoN [--size WxH] [--fps N] [--frames N] (a V4L2 camera; default\n"
-    "          size that of the settings' camera, 25 frames/s; imagepro-cli devices lists them)\n"
+    "       or --camera /dev/videoN [--size WxH] [--fps N] [--frames N] (a V4L2 camera; default size\n"
+    "          and rate the settings' camera_source, or the camera model's size, 25 frames/s; its\n"
+    "          stored controls are set; imagepro-cli devices lists the cameras)\n"
     "       or --video FILE [--frames N] (AVI, MP4, MKV ..., every frame as fast as possible)";
 
 }  // namespace imagepro::cli
