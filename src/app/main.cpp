@@ -1,6 +1,7 @@
 // imagepro: the desktop application (thesis appendix A).
 //   imagepro [--source virtual|file|camera] [--config FILE] [FILE|FOLDER ...]
 //            [--screenshot PNG [--after SECONDS]]   (for the documentation: save the window, quit)
+//            [--measure-responsiveness SECONDS]     (GUI stalls with the Virtual source unpaced: print, quit)
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QTimer>
@@ -8,6 +9,7 @@
 #include <cstdio>
 
 #include "app/main_window.h"
+#include "app/responsiveness_probe.h"
 #include "app/source_kind.h"
 
 int main(int argc, char** argv) {
@@ -29,7 +31,12 @@ int main(int argc, char** argv) {
                                 QStringLiteral("png"));
   QCommandLineOption after(QStringLiteral("after"), QStringLiteral("Seconds to run before --screenshot (default 5)."),
                            QStringLiteral("seconds"), QStringLiteral("5"));
+  QCommandLineOption measure(QStringLiteral("measure-responsiveness"),
+                             QStringLiteral("Run the Virtual source unpaced for this many seconds while timing the GUI "
+                                            "thread; print the stalls and the frames processed and shown, then quit."),
+                             QStringLiteral("seconds"));
   parser.addOption(source);
+  parser.addOption(measure);
   parser.addOption(config);
   parser.addOption(screenshot);
   parser.addOption(after);
@@ -52,6 +59,24 @@ int main(int argc, char** argv) {
   // A bad settings file is shown in the window; the defaults stay in force.
   if (parser.isSet(config)) window.loadSettingsFile(parser.value(config));
   window.selectSource(kind);
+  if (parser.isSet(measure)) {
+    bool seconds_ok = false;
+    const double seconds = parser.value(measure).toDouble(&seconds_ok);
+    if (!seconds_ok || !(seconds > 0.0)) {
+      std::fprintf(stderr, "imagepro: --measure-responsiveness needs a number of seconds, not '%s'\n",
+                   qPrintable(parser.value(measure)));
+      return 2;
+    }
+    auto* measurement = new imagepro::app::ResponsivenessMeasurement(window, seconds, 2, &window);
+    QObject::connect(measurement, &imagepro::app::ResponsivenessMeasurement::finished, &window, [&] {
+      std::fputs(qPrintable(imagepro::app::formatReport(measurement->report())), stdout);
+      std::fflush(stdout);
+      window.close();
+      app.exit(0);
+    });
+    measurement->start();
+    return app.exec();
+  }
   if (!files.isEmpty()) window.openPaths(files);
   else if (parser.isSet(source) && kind != SourceKind::File) window.startSource();
   if (parser.isSet(screenshot)) {

@@ -11,6 +11,7 @@
 #include <QPixmap>
 #include <QPushButton>
 
+#include "app/analysis_window.h"
 #include "app/control_panel.h"
 #include "app/frame_view.h"
 #include "app/main_window.h"
@@ -58,6 +59,14 @@ void MainWindow::buildMenus() {
     QAction* a = run->addAction(tr("Source: %1").arg(sourceKindLabel(k)), this, [this, k] { selectSource(k); });
     a->setShortcut(QKeySequence(QStringLiteral("Alt+%1").arg(static_cast<int>(k) + 1)));
   }
+  run->addSeparator();
+  run->addAction(tr("&Analysis..."), this, [this] {
+    auto* analysis = findChild<AnalysisWindow*>();
+    if (!analysis) analysis = new AnalysisWindow(*this, this);
+    analysis->show();
+    analysis->raise();
+    analysis->activateWindow();
+  })->setShortcut(QKeySequence(tr("Ctrl+Shift+A")));
 
   QMenu* view = menuBar()->addMenu(tr("&View"));
   view->addAction(tr("Zoom &In"), this, [this] { view_->zoomIn(); })->setShortcut(QKeySequence::ZoomIn);

@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "app/analysis_window.h"
 #include "app/main_window.h"
 
 namespace imagepro::app::test {
@@ -93,6 +94,28 @@ class SettingsFileTest : public QObject {
   void windowLayoutIsRemembered();
  private:
   std::unique_ptr<MainWindow> window_;
+};
+
+// The Analysis window: both case studies (thesis 5.3) on virtual, recorded and live
+// input, errors in words, and the GUI responsiveness measurement.
+class AnalysisWindowTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void init();
+  void cleanup();
+  void menuOpensTheWindow();
+  void virtualPendulumGivesG();
+  void harmonicFitFollowsThePendulum();
+  void dataOutFileGivesTheCliNumbers();
+  void brokenFilesGiveNamedErrors();
+  void virtualTwoTargetsHaveSmallErrors();
+  void cancelStopsTheRun();
+  void livePendulumIsCollected();
+  void liveTwoTargetsNeedTwoTargets();
+  void responsivenessProbeReports();
+ private:
+  std::unique_ptr<MainWindow> main_;
+  std::unique_ptr<AnalysisWindow> window_;
 };
 
 }  // namespace imagepro::app::test

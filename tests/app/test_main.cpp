@@ -26,7 +26,9 @@ int main(int argc, char** argv) {
   imagepro::app::test::FileTest files;
   imagepro::app::test::OutputTest outputs;
   imagepro::app::test::SettingsFileTest settings;
-  for (QObject* t : std::initializer_list<QObject*>{&panels, &worker, &virtual_source, &files, &outputs, &settings})
+  imagepro::app::test::AnalysisWindowTest analysis;
+  for (QObject* t : std::initializer_list<QObject*>{&panels, &worker, &virtual_source, &files, &outputs, &settings,
+                                                      &analysis})
     failed += QTest::qExec(t, argc, argv);
   return failed == 0 ? 0 : 1;
 }
