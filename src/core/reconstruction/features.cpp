@@ -436,19 +436,31 @@ void fullPathMod(const ThresholdLines& lines, const cv::Rect& crop, const cv::Ma
       subPixel ? std::max(1, roundToInt(2.0 * M_SQRT2 * (detected.a + detected.b) / kSubPixelPoints)) : 1;
   // One crossing of a row or column with the rim, expected at `e`, the run inside the rim
   // along that line being `run` long; `in` points towards the inside.
+  // The detected rim lies off the grey edge by about the same distance all round (the
+  // detection's threshold, taken in another region, sits nearer one class under blur): the
+  // mean inward offset of the crossings refined so far starts the next one, so its first
+  // area estimate usually holds one clean edge and settles at once.
+  double offsetSum = 0.0;
+  int offsetCount = 0;
   auto crossing = [&](const PixelLine& binary, const PixelLine& greyLine, double e, int in, double run,
                       double curvature, double& at) {
     // SubPixel starts from the detected rim itself; only where the grey levels there show no
     // clean edge does it start again from the binary crossing.
+    auto refined = [&] {
+      if (!refineCrossing(greyLine, in, levels, std::min(run, curvature), at)) return false;
+      offsetSum += (at - e) * in;
+      ++offsetCount;
+      return true;
+    };
     if (subPixel) {
-      at = e;
-      if (refineCrossing(greyLine, in, levels, std::min(run, curvature), at)) return true;
+      at = offsetCount > 0 ? e + in * offsetSum / offsetCount : e;
+      if (refined()) return true;
     }
     const int start = roundToInt(e - in * band), end = roundToInt(e + in * band);
     const int k = firstRimPixel(start, end, in, [&](int j) { return binary.above(j, lines.level); });
     if (k == INT32_MIN) return false;
     at = k - in * 0.5;
-    return !subPixel || refineCrossing(greyLine, in, levels, std::min(run, curvature), at);
+    return !subPixel || refined();
   };
   // Rows cross the parts of the rim whose normal is closer to horizontal.
   for (int y = c.y; y < c.y + c.height; y += lineStep) {
