@@ -3,6 +3,7 @@
 #include <QSettings>
 #include <QVBoxLayout>
 
+#include "app/calibration_panel.h"
 #include "app/collapsible_group.h"
 #include "app/output_panel.h"
 #include "app/panels.h"
@@ -11,7 +12,11 @@
 namespace imagepro::app {
 
 ControlPanel::ControlPanel(SettingsBinder& binder, QWidget* parent)
-    : QScrollArea(parent), source_(new SourcePanel), output_(new OutputPanel), column_(new QWidget) {
+    : QScrollArea(parent),
+      source_(new SourcePanel),
+      output_(new OutputPanel),
+      calibration_(new CalibrationPanel(binder)),
+      column_(new QWidget) {
   setObjectName(QStringLiteral("controlPanel"));
   setWidgetResizable(true);
   setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
@@ -35,6 +40,10 @@ ControlPanel::ControlPanel(SettingsBinder& binder, QWidget* parent)
   addGroup(tr("Target Features Display"), tr("The contour points and spots the reconstruction used"),
            featuresDisplayPanel(binder));
   addGroup(tr("Data Out, Screenshot, Settings"), tr("Output files and the settings file"), output_);
+  addGroup(tr("Internal Camera Calibration"),
+           tr("Lens distortion calibration from up to four images of the calibration pattern (thesis 4.6, "
+              "appendix A)"),
+           calibration_);
   static_cast<QVBoxLayout*>(column_->layout())->addStretch(1);
   setWidget(column_);
   binder.refresh();

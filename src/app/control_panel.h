@@ -12,6 +12,7 @@ class QSettings;
 
 namespace imagepro::app {
 
+class CalibrationPanel;
 class CollapsibleGroup;
 class OutputPanel;
 class SourcePanel;
@@ -24,6 +25,7 @@ class ControlPanel : public QScrollArea {
 
   SourcePanel* sourcePanel() const { return source_; }
   OutputPanel* outputPanel() const { return output_; }
+  CalibrationPanel* calibrationPanel() const { return calibration_; }
   const std::vector<CollapsibleGroup*>& groups() const { return groups_; }
 
   // Which groups are folded, remembered between runs.
@@ -35,6 +37,7 @@ class ControlPanel : public QScrollArea {
 
   SourcePanel* source_;
   OutputPanel* output_;
+  CalibrationPanel* calibration_;
   std::vector<CollapsibleGroup*> groups_;
   QWidget* column_;
 };

@@ -17,6 +17,8 @@
 #include <QTimer>
 #include <QVBoxLayout>
 
+#include "app/calibration_panel.h"
+#include "app/calibration_wizard.h"
 #include "app/control_panel.h"
 #include "app/frame_view.h"
 #include "app/histogram_chart.h"
@@ -163,6 +165,8 @@ void MainWindow::buildDocks() {
   connect(output, &OutputPanel::saveSettingsRequested, this, &MainWindow::saveSettingsDialog);
   connect(output, &OutputPanel::loadSettingsRequested, this, &MainWindow::loadSettingsDialog);
   connect(output, &OutputPanel::restoreDefaultsRequested, this, &MainWindow::restoreDefaults);
+  connect(control_panel_->calibrationPanel(), &CalibrationPanel::wizardRequested, this,
+          [this] { showCalibrationWizard(*this); });
 }
 
 void MainWindow::buildStatusBar() {

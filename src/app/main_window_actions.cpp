@@ -12,6 +12,7 @@
 #include <QPushButton>
 
 #include "app/analysis_window.h"
+#include "app/calibration_wizard.h"
 #include "app/control_panel.h"
 #include "app/frame_view.h"
 #include "app/main_window.h"
@@ -74,6 +75,10 @@ void MainWindow::buildMenus() {
   view->addAction(tr("&Fit Frame"), this, [this] { view_->fitToWindow(); })->setShortcut(QKeySequence(tr("Ctrl+0")));
   view->addSeparator();
   for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
+
+  QMenu* tools = menuBar()->addMenu(tr("&Tools"));
+  tools->addAction(tr("&Calibration Wizard..."), this, [this] { showCalibrationWizard(*this); })
+      ->setToolTip(tr("Lens distortion calibration from up to four images of the calibration pattern (thesis 4.6)"));
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&Keys"), this, &MainWindow::showKeys)->setShortcut(QKeySequence::HelpContents);

@@ -47,6 +47,7 @@ bool isSourceError(Status s) { return isFatalSourceError(s) || s == Status::Empt
 Worker::Worker(const Settings& settings, QObject* parent)
     : QObject(parent), engine_(settings), applied_(settings) {
   qRegisterMetaType<DisplayPacketPtr>("imagepro::app::DisplayPacketPtr");
+  qRegisterMetaType<cv::Mat>("cv::Mat");
   timer_ = new QTimer(this);  // a child, so it moves to the worker thread with us
   timer_->setSingleShot(true);
   timer_->setTimerType(Qt::PreciseTimer);
@@ -103,6 +104,19 @@ void Worker::closeDataOut() {
   QMetaObject::invokeMethod(this, [this] {
     data_out_.close();
     emit dataOutChanged(QString());
+  }, Qt::QueuedConnection);
+}
+
+void Worker::captureFrame(quint64 request) {
+  QMetaObject::invokeMethod(this, [this, request] {
+    cv::Mat copy;
+    if (kind_ == SourceKind::File) {
+      if (have_file_frame_) copy = file_frame_.image.clone();
+    } else if (source_ && have_result_) {  // a stopped camera's frame was a view of its buffers
+      copy = engine_.lastFrame().image.clone();
+    }
+    const QString source = source_ ? QString::fromStdString(source_->describe()) : QString();
+    emit frameCaptured(request, copy, source, running_.load());
   }, Qt::QueuedConnection);
 }
 

@@ -51,6 +51,10 @@ class Worker : public QObject {
   // `replace` (the user agreed) it is deleted first.
   void setDataOut(const QString& path, ExistingFile existing, bool replace = false);
   void closeDataOut();
+  // A copy of the frame last taken from the source (for File input, the still image shown),
+  // answered with frameCaptured(request, ...): empty when there is none (nothing started or
+  // opened yet, or a camera that was stopped and gave its buffers back).
+  void captureFrame(quint64 request);
 
   // For tests and the status bar.
   Settings appliedSettings() const;
@@ -63,6 +67,7 @@ class Worker : public QObject {
   void sourceChanged(const QString& description);
   void errorOccurred(const QString& message);
   void dataOutChanged(const QString& path);  // empty when closed
+  void frameCaptured(quint64 request, cv::Mat grey, QString source, bool running);
 
  private:
   // All below run in the worker thread.
@@ -114,3 +119,5 @@ class Worker : public QObject {
 };
 
 }  // namespace imagepro::app
+
+Q_DECLARE_METATYPE(cv::Mat)

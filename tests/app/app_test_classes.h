@@ -96,6 +96,21 @@ class SettingsFileTest : public QObject {
   std::unique_ptr<MainWindow> window_;
 };
 
+// The calibration wizard (thesis 4.6, appendix A): virtual pattern images, the run, Set and Use, errors.
+class CalibrationWizardTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void init();
+  void cleanup();
+  void recoversTheLensFromVirtualPatternImages();
+  void problemsAreNamedPerImageAndForTheRun();
+  void captureTakesTheRunningSourcesFrame();
+  void panelAndMenuOpenTheWizard();
+  void closingOrCancellingWhileRunningIsSafe();
+ private:
+  std::unique_ptr<MainWindow> window_;
+};
+
 // The Analysis window: both case studies (thesis 5.3) on virtual, recorded and live
 // input, errors in words, and the GUI responsiveness measurement.
 class AnalysisWindowTest : public QObject {

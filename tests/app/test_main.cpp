@@ -26,9 +26,10 @@ int main(int argc, char** argv) {
   imagepro::app::test::FileTest files;
   imagepro::app::test::OutputTest outputs;
   imagepro::app::test::SettingsFileTest settings;
+  imagepro::app::test::CalibrationWizardTest calibration;
   imagepro::app::test::AnalysisWindowTest analysis;
   for (QObject* t : std::initializer_list<QObject*>{&panels, &worker, &virtual_source, &files, &outputs, &settings,
-                                                      &analysis})
+                                                      &calibration, &analysis})
     failed += QTest::qExec(t, argc, argv);
   return failed == 0 ? 0 : 1;
 }
