@@ -15,14 +15,12 @@
 
 #include "core/connectivity/connectivity.h"
 #include "core/edges/edges.h"
-#include "core/segmentation/histogram.h"
-#include "core/segmentation/threshold.h"
-#include "core/source/virtual_renderer.h"
+#include "bench_frames.h"
 
 namespace imagepro {
 namespace {
 
-constexpr int kFrames = 10;
+constexpr int kFrames = bench::kTableFrames;
 constexpr int kAllFrames = -1;
 
 struct TestFrames {
@@ -33,32 +31,11 @@ struct TestFrames {
 const TestFrames& frames() {
   static const TestFrames f = [] {
     cv::setNumThreads(1);  // one core for OpenCV too
-    const CameraModel camera;  // 640 x 480
-    const TargetGeometry target;
-    const Pose poses[kFrames] = {{0, 0, 0, 0, 0, 800},          {20, -15, 30, 120, -60, 900},
-                                 {-35, 10, -80, -150, 80, 1200}, {10, 40, 150, 60, 100, 650},
-                                 {0, -50, 10, -200, -120, 1500}, {45, 0, 0, 0, 0, 1000},
-                                 {-15, -25, -170, 180, 30, 700}, {5, 5, 60, -40, -150, 1800},
-                                 {30, 30, 90, 250, 170, 900},    {-5, 20, -30, 20, 10, 450}};
     TestFrames out;
     for (int i = 0; i < kFrames; ++i) {
-      VirtualSceneOptions scene;
-      scene.mode = RenderMode::Grey;
-      scene.clutter = 4 * i;
-      scene.seed = 200 + static_cast<unsigned>(i);
-      scene.noise_sigma = 2.0 + i % 3 * 2.0;
-      scene.blur_sigma_px = 0.5 + 0.2 * (i % 4);
-      scene.illumination_gradient = 0.1 * (i % 5);
-      scene.white_level = 160 + 9 * i;
-      scene.black_level = 12 + 2 * i;
-      scene.background_level = 60 + 8 * i;
-      cv::Mat grey, binary;
-      renderTarget(camera, target, scene, poses[i], grey, static_cast<std::uint64_t>(i));
-      Histogram h;
-      computeHistogram(grey, h);
-      int t = 128;
-      if (!ok(computeThreshold(ThresholdOptions{ThresholdMethod::AtMod, 128}, h, t))) t = 128;
-      binarize(grey, t, binary);
+      const cv::Mat binary = bench::binaryTableFrame({.clutter_first = 0, .clutter_step = 4, .seed_first = 200,
+                                                      .gradient_period = 5, .white_first = 160, .white_step = 9},
+                                                     i);
       EdgeList edges;
       detectEdgesLaplace(binary, edges);
       out.binary.push_back(binary);

@@ -17,46 +17,23 @@
 #include "core/connectivity/connectivity.h"
 #include "core/edges/edges.h"
 #include "core/ellipse/detect.h"
-#include "core/segmentation/histogram.h"
-#include "core/segmentation/threshold.h"
-#include "core/source/virtual_renderer.h"
+#include "bench_frames.h"
 
 namespace imagepro {
 namespace {
 
-constexpr int kFrames = 10;
+constexpr int kFrames = bench::kTableFrames;
 constexpr int kAllFrames = -1;
 const cv::Size kImage(640, 480);
 
 const std::vector<Paths>& frames() {
   static const std::vector<Paths> f = [] {
     cv::setNumThreads(1);  // one core for OpenCV too
-    const CameraModel camera;
-    const TargetGeometry target;
-    const Pose poses[kFrames] = {{0, 0, 0, 0, 0, 800},          {20, -15, 30, 120, -60, 900},
-                                 {-35, 10, -80, -150, 80, 1200}, {10, 40, 150, 60, 100, 650},
-                                 {0, -50, 10, -200, -120, 1500}, {45, 0, 0, 0, 0, 1000},
-                                 {-15, -25, -170, 180, 30, 700}, {5, 5, 60, -40, -150, 1800},
-                                 {30, 30, 90, 250, 170, 900},    {-5, 20, -30, 20, 10, 450}};
     std::vector<Paths> out;
     for (int i = 0; i < kFrames; ++i) {
-      VirtualSceneOptions scene;
-      scene.mode = RenderMode::Grey;
-      scene.clutter = 6 + 4 * i;
-      scene.seed = 300 + static_cast<unsigned>(i);
-      scene.noise_sigma = 2.0 + i % 3 * 2.0;
-      scene.blur_sigma_px = 0.5 + 0.2 * (i % 4);
-      scene.illumination_gradient = 0.1 * (i % 4);
-      scene.white_level = 180 + 6 * i;
-      scene.black_level = 12 + 2 * i;
-      scene.background_level = 60 + 8 * i;
-      cv::Mat grey, binary;
-      renderTarget(camera, target, scene, poses[i], grey, static_cast<std::uint64_t>(i));
-      Histogram h;
-      computeHistogram(grey, h);
-      int t = 128;
-      if (!ok(computeThreshold(ThresholdOptions{ThresholdMethod::AtMod, 128}, h, t))) t = 128;
-      binarize(grey, t, binary);
+      const cv::Mat binary = bench::binaryTableFrame({.clutter_first = 6, .clutter_step = 4, .seed_first = 300,
+                                                      .gradient_period = 4, .white_first = 180, .white_step = 6},
+                                                     i);
       EdgeList edges;
       detectEdgesLaplace(binary, edges);
       Paths paths;
