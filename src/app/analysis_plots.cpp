@@ -4,6 +4,7 @@
 #include <QChartView>
 #include <QHBoxLayout>
 #include <QLineSeries>
+#include <QStringList>
 #include <QVBoxLayout>
 #include <QValueAxis>
 
@@ -32,8 +33,9 @@ struct Range {
       axis->setRange(-1.0, 1.0);
       return;
     }
-    const double pad = std::max(min_pad, 0.08 * (hi - lo));
+    const double pad = std::max(min_pad, 0.05 * (hi - lo));
     axis->setRange(lo - pad, hi + pad);
+    axis->applyNiceNumbers();  // round ticks
   }
 };
 
@@ -197,6 +199,23 @@ void TwoTargetCharts::setResult(const TwoTargetStudyResult& result) {
   clear();
   const double known[2] = {result.object.spacing_mm, result.object.angle_deg};
   const int n = static_cast<int>(result.frames.size());
+  // Which frames show which object position (virtual scene).
+  QStringList positions, starts;
+  for (int i = 0; i < n;) {
+    const int position = result.frames[static_cast<std::size_t>(i)].position;
+    int end = i;
+    while (end < n && result.frames[static_cast<std::size_t>(end)].position == position) ++end;
+    if (position > 0) {
+      positions << QString::number(position);
+      starts << QString::number(i);
+    }
+    i = end;
+  }
+  const QString x_title = positions.isEmpty() ? tr("frame")
+                          : positions.size() == 1
+                              ? tr("frame (position %1)").arg(positions.front())
+                              : tr("frame (pos. %1 from %2)").arg(positions.join(QStringLiteral(", ")),
+                                                                 starts.join(QStringLiteral(", ")));
   for (int q = 0; q < 2; ++q) {
     QChart* chart = charts_[q];
     Range range;
@@ -219,7 +238,10 @@ void TwoTargetCharts::setResult(const TwoTargetStudyResult& result) {
                                              : tr("known %1 deg").arg(known[q], 0, 'f', 1),
                                kKnown, Qt::DashLine, 1.2);
     k->replace({QPointF(0.0, known[q]), QPointF(std::max(1, n - 1), known[q])});
-    axisOf(chart, Qt::Horizontal)->setRange(-0.5, std::max(1, n - 1) + 0.5);
+    QValueAxis* x = axisOf(chart, Qt::Horizontal);
+    x->setRange(0.0, std::max(1, n - 1));
+    x->applyNiceNumbers();
+    x->setTitleText(x_title);
     range.applyTo(axisOf(chart, Qt::Vertical), q == 0 ? 0.1 : 0.05);
   }
 }

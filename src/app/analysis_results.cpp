@@ -18,7 +18,8 @@ QString signedPercent(double measured, double truth, int decimals) {
   return (p >= 0.0 ? QStringLiteral("+") : QString()) + number(p, decimals) + QStringLiteral(" %");
 }
 
-void fillTable(QTableWidget* table, const QStringList& header, const std::vector<QStringList>& rows) {
+// `stretch`: the column that takes the spare width, or -1.
+void fillTable(QTableWidget* table, const QStringList& header, const std::vector<QStringList>& rows, int stretch) {
   table->clear();
   table->setColumnCount(static_cast<int>(header.size()));
   table->setRowCount(static_cast<int>(rows.size()));
@@ -29,8 +30,10 @@ void fillTable(QTableWidget* table, const QStringList& header, const std::vector
       if (c > 0) item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
       table->setItem(r, c, item);
     }
+  table->horizontalHeader()->setSectionResizeMode(QHeaderView::Interactive);
   table->resizeColumnsToContents();
-  table->horizontalHeader()->setStretchLastSection(true);
+  table->horizontalHeader()->setStretchLastSection(false);
+  if (stretch >= 0) table->horizontalHeader()->setSectionResizeMode(stretch, QHeaderView::Stretch);
 }
 
 QString failureText(const std::vector<std::pair<Status, int>>& failures) {
@@ -83,7 +86,7 @@ void AnalysisWindow::showPendulum() {
                   QString(), QString(), QString()});
   rows.push_back({tr("RMS off the sphere [mm]"), number(a.sphere.radial_rms_mm, 3), QString(), QString(), QString()});
   rows.push_back({tr("Mid-swing crossings"), QString::number(a.period.crossings), QString(), QString(), QString()});
-  fillTable(summary_, {tr("Pendulum (thesis 5.3.2)"), tr("measured"), tr("± 1 sigma"), tr("true"), tr("error")}, rows);
+  fillTable(summary_, {tr("Pendulum (thesis 5.3.2)"), tr("measured"), tr("± 1 sigma"), tr("true"), tr("error")}, rows, 0);
   setMessage(tr("g = %1 ± %2 m/s² from %3 frames%4")
                  .arg(number(a.g_m_s2, 4), number(a.g_sigma_m_s2, 4))
                  .arg(a.frames)
@@ -104,7 +107,7 @@ void AnalysisWindow::showTwoTargets() {
   fillTable(summary_,
             {tr("Position"), tr("Correction"), tr("Measured"), tr("Distance error mean [mm]"), tr("std"), tr("max"),
              tr("Angle error mean [deg]"), tr("std"), tr("max")},
-            rows);
+            rows, -1);
   const QString known = tr("Known: distance %1 mm, angle %2 deg.")
                             .arg(number(r.object.spacing_mm, 2), number(r.object.angle_deg, 2));
   const QString failures = failureText(r.failures);

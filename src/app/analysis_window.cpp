@@ -60,7 +60,8 @@ AnalysisWindow::AnalysisWindow(MainWindow& main, QWidget* parent) : QWidget(pare
   summary_->setObjectName(QStringLiteral("analysisSummary"));
   summary_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   summary_->verticalHeader()->hide();
-  summary_->setMinimumHeight(150);
+  summary_->verticalHeader()->setDefaultSectionSize(summary_->fontMetrics().height() + 6);
+  summary_->setMinimumHeight(120);
   pendulum_chart_ = new PendulumChart;
   two_target_charts_ = new TwoTargetCharts;
   plots_ = new QStackedWidget;
@@ -71,6 +72,7 @@ AnalysisWindow::AnalysisWindow(MainWindow& main, QWidget* parent) : QWidget(pare
   results->addWidget(plots_);
   results->setStretchFactor(0, 1);
   results->setStretchFactor(1, 2);
+  results->setSizes({280, 440});  // the pendulum's table whole, the charts below
 
   auto* layout = new QHBoxLayout(this);
   layout->addWidget(buildControls());

@@ -7,6 +7,7 @@
 #include <QAction>
 #include <QChart>
 #include <QFile>
+#include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLineSeries>
@@ -48,6 +49,17 @@ int pointsIn(QChart* chart) {
   for (QAbstractSeries* s : chart->series())
     if (auto* line = qobject_cast<QLineSeries*>(s)) n += static_cast<int>(line->count());
   return n;
+}
+
+// For the documentation: IMAGEPRO_ANALYSIS_SCREENSHOT names a PNG to write the window
+// to (with `suffix` before ".png"); nothing to do without it.
+bool saveScreenshot(AnalysisWindow& w, const QString& suffix) {
+  QString path = qEnvironmentVariable("IMAGEPRO_ANALYSIS_SCREENSHOT");
+  if (path.isEmpty()) return true;
+  if (path.endsWith(QStringLiteral(".png"))) path.chop(4);
+  w.resize(1180, 720);
+  QTest::qWait(200);
+  return w.grab().save(path + suffix + QStringLiteral(".png"), "PNG");
 }
 
 // Runs the window's study and waits for its result.
@@ -117,13 +129,7 @@ void AnalysisWindowTest::virtualPendulumGivesG() {
   QCOMPARE(w.pendulumChart()->chart()->series().size(), 6);  // Tx, Ty, Tz and their fits
   QVERIFY(pointsIn(w.pendulumChart()->chart()) >= 3 * 250);
 
-  // For the documentation: IMAGEPRO_ANALYSIS_SCREENSHOT names a PNG to write.
-  const QString shot = qEnvironmentVariable("IMAGEPRO_ANALYSIS_SCREENSHOT");
-  if (!shot.isEmpty()) {
-    w.resize(1180, 720);
-    QTest::qWait(200);
-    QVERIFY(w.grab().save(shot, "PNG"));
-  }
+  QVERIFY(saveScreenshot(w, QString()));
 }
 
 void AnalysisWindowTest::harmonicFitFollowsThePendulum() {
@@ -279,6 +285,26 @@ void AnalysisWindowTest::virtualTwoTargetsHaveSmallErrors() {
   QVERIFY(w.message().contains(QStringLiteral("200.00 mm")));
   QCOMPARE(pointsIn(w.twoTargetCharts()->distanceChart()), 2 * 18 + 2);  // both runs and the known line
   QCOMPARE(pointsIn(w.twoTargetCharts()->angleChart()), 2 * 18 + 2);
+  QVERIFY(saveScreenshot(w, QStringLiteral("-two-targets")));
+  // The very summaries of `imagepro-cli two-targets --virtual` with the same frames.
+  QProcess cli;
+  cli.start(QStringLiteral(IMAGEPRO_CLI), {QStringLiteral("two-targets"), QStringLiteral("--virtual"),
+                                          QStringLiteral("--frames"), QStringLiteral("6"), QStringLiteral("--format"),
+                                          QStringLiteral("json")});
+  QVERIFY(cli.waitForFinished(60000));
+  QCOMPARE(cli.exitCode(), 0);
+  const QJsonArray expected =
+      QJsonDocument::fromJson(cli.readAllStandardOutput()).object()[QStringLiteral("summaries")].toArray();
+  QCOMPARE(expected.size(), 6);
+  for (int i = 0; i < 6; ++i) {
+    const QJsonObject e = expected[i].toObject();
+    const TwoTargetSummary& s = r.summaries[static_cast<std::size_t>(i)];
+    QCOMPARE(s.position, e[QStringLiteral("position")].toInt());
+    QCOMPARE(s.correction, e[QStringLiteral("distortion_correction")].toBool());
+    QCOMPARE(s.distance_mm.mean, e[QStringLiteral("distance_error_mm")].toObject()[QStringLiteral("mean")].toDouble());
+    QCOMPARE(s.distance_mm.max_abs, e[QStringLiteral("distance_error_mm")].toObject()[QStringLiteral("max_abs")].toDouble());
+    QCOMPARE(s.angle_deg.std, e[QStringLiteral("angle_error_deg")].toObject()[QStringLiteral("std")].toDouble());
+  }
 
   // An object whose cards cannot fit is refused in words.
   params.object.spacing_mm = 50.0;
