@@ -86,7 +86,8 @@ AnalysisWindow::AnalysisWindow(MainWindow& main, QWidget* parent) : QWidget(pare
 }
 
 AnalysisWindow::~AnalysisWindow() {
-  if (collecting_) disconnect(main_.worker(), nullptr, this, nullptr);
+  // Not a word to main_ here: as its child this window goes after its members. The
+  // connection to its worker ends with either of them.
   live_two_.reset();  // joins its thread
   if (task_) {
     progress_.cancel.store(true);

@@ -393,6 +393,42 @@ void AnalysisWindowTest::liveTwoTargetsNeedTwoTargets() {
   for (const TwoTargetFrame& f : r.frames) QCOMPARE(f.status[0], Status::TooFewTargets);
 }
 
+void AnalysisWindowTest::closingTheMainWindowWhileBusyIsSafe() {
+  // The window from the menu is the main window's child: it goes with it, collecting
+  // or analysing in the background.
+  main_->show();
+  for (AnalysisStudy study : {AnalysisStudy::Pendulum, AnalysisStudy::TwoTargets}) {
+    QAction* action = nullptr;
+    for (QAction* a : main_->menuBar()->findChildren<QAction*>())
+      if (a->text() == QStringLiteral("&Analysis...")) action = a;
+    QVERIFY(action);
+    action->trigger();
+    AnalysisWindow* child = main_->findChild<AnalysisWindow*>();
+    QVERIFY(child);
+    child->setStudy(study);
+    child->setInput(AnalysisInput::LiveStream);
+    child->run();
+    QVERIFY(child->isCollecting());
+    main_->selectSource(SourceKind::Virtual);
+    main_->startSource();
+    QTRY_VERIFY_WITH_TIMEOUT(child->collectedFrames() >= 3, 30000);
+    window_.reset();
+    main_.reset();
+    main_ = std::make_unique<MainWindow>();
+    main_->show();
+  }
+  // And with a virtual scene being rendered.
+  QAction* action = nullptr;
+  for (QAction* a : main_->menuBar()->findChildren<QAction*>())
+    if (a->text() == QStringLiteral("&Analysis...")) action = a;
+  action->trigger();
+  AnalysisWindow* child = main_->findChild<AnalysisWindow*>();
+  child->setInput(AnalysisInput::VirtualScene);
+  child->run();
+  QVERIFY(child->isBusy());
+  main_.reset();
+}
+
 void AnalysisWindowTest::responsivenessProbeReports() {
   // The measurement behind `imagepro --measure-responsiveness`, briefly: sane counts,
   // never a timing threshold (timing depends on the machine).

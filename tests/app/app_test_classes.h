@@ -127,6 +127,7 @@ class AnalysisWindowTest : public QObject {
   void cancelStopsTheRun();
   void livePendulumIsCollected();
   void liveTwoTargetsNeedTwoTargets();
+  void closingTheMainWindowWhileBusyIsSafe();
   void responsivenessProbeReports();
  private:
   std::unique_ptr<MainWindow> main_;
