@@ -26,6 +26,10 @@ struct ResponsivenessReport {
   double max_stall_ms = 0.0;  // longest tick gap minus the interval
   double p99_stall_ms = 0.0;  // 99th percentile of (gap - interval), 0 when below
   double median_gap_ms = 0.0;
+  // CPU time the GUI thread itself used within a gap: a stall with little of it was
+  // spent waiting (for a core, for the display server), not computing.
+  double max_stall_cpu_ms = 0.0;  // within the longest gap
+  double max_gap_cpu_ms = 0.0;    // the most within any one gap
   std::int64_t frames_processed = 0;  // by the worker during the measurement
   std::int64_t frames_shown = 0;      // packets the window received and showed
   std::int64_t backlog_max = 0;       // most packets sent by the worker and not yet shown, at once
@@ -41,7 +45,7 @@ class StallProbe : public QObject {
   void stop();
   int intervalMs() const { return interval_ms_; }
   std::int64_t ticks() const { return static_cast<std::int64_t>(gaps_ms_.size()); }
-  // Fills max_stall_ms, p99_stall_ms, median_gap_ms, ticks and interval_ms.
+  // Fills every field but the seconds and the frame counts.
   void summarise(ResponsivenessReport& report) const;
 
  signals:
@@ -52,7 +56,8 @@ class StallProbe : public QObject {
   QTimer* timer_;
   QElapsedTimer clock_;
   qint64 last_ns_ = -1;
-  std::vector<double> gaps_ms_;
+  double last_cpu_ms_ = 0.0;
+  std::vector<double> gaps_ms_, gap_cpu_ms_;
 };
 
 // Runs the window's Virtual source unpaced for `seconds` with the probe on, then

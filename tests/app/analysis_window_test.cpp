@@ -446,6 +446,8 @@ void AnalysisWindowTest::responsivenessProbeReports() {
   QVERIFY(r.max_stall_ms >= r.p99_stall_ms);
   QVERIFY(r.p99_stall_ms >= 0.0);
   QVERIFY(r.median_gap_ms > 0.0);
+  QVERIFY(r.max_stall_cpu_ms >= 0.0);
+  QVERIFY(r.max_gap_cpu_ms >= r.max_stall_cpu_ms);
   QVERIFY(r.backlog_max >= 0);
   QVERIFY(main_->settings().virtual_scene.frame_rate_hz >= 1e5);  // it ran unpaced
   QTRY_VERIFY_WITH_TIMEOUT(!main_->worker()->isRunning(), 5000);
