@@ -4,6 +4,7 @@
 #include <QObject>
 
 #include <algorithm>
+#include <cmath>
 
 #include "app/results_text.h"
 #include "core/calibration/spacing.h"
@@ -89,11 +90,12 @@ void analyseCalibrationImage(const Settings& settings, CalibrationImage& image) 
 
 namespace {
 
+// One decimal, without a "-0.0".
+QString angle(double deg) { return QString::number(std::abs(deg) < 0.05 ? 0.0 : deg, 'f', 1); }
+
 QString poseText(const Pose& p) {
   return QObject::tr("pattern at Rx %1, Ry %2, Rz %3 deg, Tz %4 mm")
-      .arg(p.rx_deg, 0, 'f', 1)
-      .arg(p.ry_deg, 0, 'f', 1)
-      .arg(p.rz_deg, 0, 'f', 1)
+      .arg(angle(p.rx_deg), angle(p.ry_deg), angle(p.rz_deg))
       .arg(p.tz_mm, 0, 'f', 0);
 }
 

@@ -138,7 +138,9 @@ void DistortionFieldView::paintEvent(QPaintEvent*) {
   QPainter p(this);
   p.fillRect(rect(), palette().window());
   if (camera_.width <= 0 || camera_.height <= 0) return;
-  const QRectF frame = fitted(QSizeF(camera_.width, camera_.height), QRectF(rect()).adjusted(4, 4, -4, -4));
+  const int text_height = fontMetrics().height();
+  const QRectF frame =
+      fitted(QSizeF(camera_.width, camera_.height), QRectF(rect()).adjusted(4, 4, -4, -4 - text_height));
   p.fillRect(frame, Qt::white);
   p.setPen(QColor(150, 150, 150));
   p.drawRect(frame);
@@ -175,7 +177,8 @@ void DistortionFieldView::paintEvent(QPaintEvent*) {
   }
   p.setPen(QColor(60, 60, 60));
   const QString scale = arrow_scale_ > 0.0 ? tr("arrows x%1").arg(arrow_scale_) : tr("no displacement");
-  p.drawText(frame.adjusted(6, 4, -6, -4), Qt::AlignLeft | Qt::AlignBottom, scale);
+  p.drawText(QRectF(frame.left(), frame.bottom() + 2, frame.width(), text_height), Qt::AlignLeft | Qt::AlignTop,
+             scale + tr(";  + principal point"));
 }
 
 }  // namespace imagepro::app

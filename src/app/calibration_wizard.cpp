@@ -64,7 +64,7 @@ CalibrationWizard::CalibrationWizard(MainWindow& window) : QDialog(&window), win
   auto* legend = new QLabel(tr("<span style='color:#28dc3c'>&#9711;</span> target found &nbsp; "
                                "<span style='color:#00c8ff'>&#9675;</span> spots found (step 5) &nbsp; "
                                "<span style='color:#ff2828'>&#9679;</span> ideal positions (step 4) &nbsp; "
-                               "<span style='color:#c8b400'>&#9472;</span> matches (step 6), lengthened"));
+                               "<span style='color:#c8b400'>&#9472;</span> matches (step 6), drawn at length"));
   legend->setObjectName(QStringLiteral("calibrationLegend"));
   auto* legend_row = new QHBoxLayout;
   legend_row->addWidget(legend, 1);
@@ -77,14 +77,14 @@ CalibrationWizard::CalibrationWizard(MainWindow& window) : QDialog(&window), win
   left->addLayout(images, 1);
   left->addLayout(legend_row);
   auto* layout = new QHBoxLayout(this);
-  layout->addLayout(left, 3);
-  layout->addWidget(buildRunColumn(), 2);
+  layout->addLayout(left, 5);
+  layout->addWidget(buildRunColumn(), 4);
 
   connect(window_.worker(), &Worker::frameCaptured, this, &CalibrationWizard::onFrameCaptured);
   for (int i = 0; i < kCalibrationSlots; ++i) refreshSlot(i);
   showField();
   updateButtons();
-  resize(1320, 860);
+  resize(1400, 880);
 }
 
 CalibrationWizard::~CalibrationWizard() = default;
@@ -102,12 +102,12 @@ QWidget* CalibrationWizard::buildSlot(int i) {
   Slot& s = slots_[static_cast<size_t>(i)];
   auto* box = new QGroupBox(tr("Image %1").arg(i + 1));
   box->setObjectName(QStringLiteral("calibrationSlot%1").arg(i + 1));
-  auto* open = button(tr("Open Image..."), QStringLiteral("openImage%1").arg(i + 1),
+  auto* open = button(tr("Open image..."), QStringLiteral("openImage%1").arg(i + 1),
                       tr("An image of the calibration pattern from a file (thesis 4.6 step 1)"));
   auto* capture = button(tr("Capture"), QStringLiteral("captureImage%1").arg(i + 1),
                          tr("The current frame of the running source, as in thesis appendix A.2.2 "
                             "(\"Set as Calibration Image\")"));
-  auto* render = button(tr("Render Virtual"), QStringLiteral("renderImage%1").arg(i + 1),
+  auto* render = button(tr("Render virtual"), QStringLiteral("renderImage%1").arg(i + 1),
                         tr("The calibration pattern (thesis 4.3) drawn by the Virtual source through the settings' "
                            "lens, turned %1 as thesis 4.6 step 1 asks, its target %2 mm away on the optical axis")
                             .arg(viewName(i))
@@ -119,7 +119,8 @@ QWidget* CalibrationWizard::buildSlot(int i) {
   s.status = new QLabel;
   s.status->setObjectName(QStringLiteral("slotStatus%1").arg(i + 1));
   s.status->setWordWrap(true);
-  s.status->setMinimumHeight(2 * s.status->fontMetrics().lineSpacing());
+  s.status->setAlignment(Qt::AlignLeft | Qt::AlignTop);
+  s.status->setMinimumHeight(3 * s.status->fontMetrics().lineSpacing());
   s.status->setTextInteractionFlags(Qt::TextSelectableByMouse);
 
   auto* buttons = new QHBoxLayout;

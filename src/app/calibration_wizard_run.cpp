@@ -66,13 +66,28 @@ QWidget* CalibrationWizard::buildRunColumn() {
   run_status_ = new QLabel;
   run_status_->setObjectName(QStringLiteral("calibrationRunStatus"));
   run_status_->setWordWrap(true);
+  run_status_->setAlignment(Qt::AlignLeft | Qt::AlignTop);
+  run_status_->setMinimumHeight(3 * run_status_->fontMetrics().lineSpacing());
   run_status_->setTextInteractionFlags(Qt::TextSelectableByMouse);
 
   table_ = new QTableWidget(0, 9);
   table_->setObjectName(QStringLiteral("calibrationIterations"));
-  table_->setHorizontalHeaderLabels({tr("It."), tr("k1 (px^-2)"), tr("k2 (px^-4)"), tr("p1 (px^-1)"),
-                                     tr("p2 (px^-1)"), tr("Rel. change"), tr("RMS (px)"), tr("Matches"),
-                                     tr("Images")});
+  const QStringList headers{tr("It."), tr("k1"), tr("k2"), tr("p1"), tr("p2"), tr("Change"), tr("RMS px"),
+                            tr("Spots"), tr("Images")};
+  const QStringList header_tips{tr("Iteration"),
+                                tr("Radial distortion k1, px^-2"),
+                                tr("Radial distortion k2, px^-4"),
+                                tr("Tangential distortion p1, px^-1"),
+                                tr("Tangential distortion p2, px^-1"),
+                                tr("Largest relative change of a parameter against the iteration before (step 8)"),
+                                tr("RMS residual of the fit over the matched spots, px"),
+                                tr("Spots matched over every image used"),
+                                tr("Images used")};
+  for (int c = 0; c < headers.size(); ++c) {
+    auto* item = new QTableWidgetItem(headers[c]);
+    item->setToolTip(header_tips[c]);
+    table_->setHorizontalHeaderItem(c, item);
+  }
   table_->setToolTip(tr("Every iteration of thesis 4.6 steps 3-7 as it ends: the parameters found (eq. 4.7), their "
                         "largest relative change (step 8), the RMS residual of the fit, the spots matched and the "
                         "images used"));
@@ -98,12 +113,14 @@ QWidget* CalibrationWizard::buildRunColumn() {
   field_caption_ = new QLabel;
   field_caption_->setObjectName(QStringLiteral("distortionFieldCaption"));
   field_caption_->setWordWrap(true);
+  field_caption_->setAlignment(Qt::AlignLeft | Qt::AlignTop);
+  field_caption_->setMinimumHeight(3 * field_caption_->fontMetrics().lineSpacing());
   field_caption_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   set_and_use_ = new QPushButton(tr("Set and Use"));
   set_and_use_->setObjectName(QStringLiteral("setAndUse"));
   set_and_use_->setToolTip(tr("Give the distortion found by the calibration (thesis 4.6) to the settings' camera, "
                               "which every source uses, and turn distortion correction (thesis 4.5) on"));
-  save_ = new QPushButton(tr("Save Calibration..."));
+  save_ = new QPushButton(tr("Save calibration..."));
   save_->setObjectName(QStringLiteral("saveCalibration"));
   save_->setToolTip(tr("Write the camera with the distortion found (thesis 4.6) as a settings file of its camera "
                        "section alone, as imagepro-cli calibrate does; an existing file is kept as .bak"));

@@ -30,6 +30,9 @@ namespace {
 constexpr double kViewDistanceMm = 800.0;
 constexpr double kNoiseSigma = 3.0, kBlurSigmaPx = 0.8;
 constexpr double kDeg = M_PI / 180.0;
+// Everything from this line on in an existing FILE is written by hand (the application's
+// calibration wizard) and kept when the figures above it are measured again.
+constexpr const char* kKeptSectionsMarker = "<!-- Hand-written sections below: kept by imagepro-cli calibration-study -->";
 
 std::string format(const char* fmt, ...) {
   char buf[1024];
@@ -376,7 +379,11 @@ int run(const Args& args) {
         "the ideal positions alone needs the whole displacement (16 px at the corners) within a quarter of\n"
         "the local spacing.\n";
 
-  std::string error;
+  std::string existing, error;
+  if (readWholeFile(*out, existing, error)) {
+    const auto kept = existing.find(kKeptSectionsMarker);
+    if (kept != std::string::npos) md += "\n" + existing.substr(kept);
+  }
   if (!writeFileAtomically(*out, md, error)) throw InputError(error);
   std::printf("wrote %s\n", out->c_str());
   return 0;
@@ -390,7 +397,8 @@ const CommandRegistration kRegistration{{
     "the thesis camera's distortion) and compares the recovered distortion field with the true one\n"
     "and with OpenCV's cv::calibrateCamera on the same spot grid; then reconstructs N distorted\n"
     "target frames (default 200) with the recovered, OpenCV's, the true and no parameters.\n"
-    "Writes the figures as Markdown to FILE.",
+    "Writes the figures as Markdown to FILE, keeping the hand-written sections at the end of an\n"
+    "existing FILE (from the marker line they start with on).",
     {},
     run,
 }};

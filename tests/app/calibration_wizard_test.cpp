@@ -142,8 +142,8 @@ void CalibrationWizardTest::recoversTheLensFromVirtualPatternImages() {
   }
 
   if (const QString shot = qEnvironmentVariable("IMAGEPRO_WIZARD_SCREENSHOT"); !shot.isEmpty()) {
-    wizard.findChild<QSpinBox*>(QStringLiteral("matchLineScale"))->setValue(10);
-    QVERIFY(wizard.grab().save(shot, "PNG"));
+    wizard.findChild<QSpinBox*>(QStringLiteral("matchLineScale"))->setValue(4);
+    QVERIFY(wizard.grab().save(shot, "PNG", 0));  // 0: the smallest file
     wizard.findChild<QSpinBox*>(QStringLiteral("matchLineScale"))->setValue(1);
   }
 
