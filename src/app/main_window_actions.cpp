@@ -77,6 +77,7 @@ void MainWindow::buildMenus() {
   for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
 
   QMenu* tools = menuBar()->addMenu(tr("&Tools"));
+  tools->setToolTipsVisible(true);
   tools->addAction(tr("&Calibration Wizard..."), this, [this] { showCalibrationWizard(*this); })
       ->setToolTip(tr("Lens distortion calibration from up to four images of the calibration pattern (thesis 4.6)"));
 

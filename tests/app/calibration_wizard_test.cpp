@@ -4,6 +4,7 @@
 #include <QAction>
 #include <QElapsedTimer>
 #include <QFile>
+#include <QImage>
 #include <QLineEdit>
 #include <QMenuBar>
 #include <QProgressBar>
@@ -198,6 +199,17 @@ void CalibrationWizardTest::problemsAreNamedPerImageAndForTheRun() {
   wizard.openImage(1, dir + QStringLiteral("/missing.png"));
   QVERIFY2(wizard.slotStatus(1).contains(QStringLiteral("FileNotFound")), qPrintable(wizard.slotStatus(1)));
   QVERIFY(!wizard.findChild<QPushButton*>(QStringLiteral("calibrate"))->isEnabled());  // nothing to calibrate from
+
+  // Not the size of the settings' camera.
+  QImage small(320, 240, QImage::Format_Grayscale8);
+  small.fill(200);
+  QVERIFY(small.save(dir + QStringLiteral("/small.png")));
+  wizard.openImage(1, dir + QStringLiteral("/small.png"));
+  QTRY_VERIFY_WITH_TIMEOUT(!wizard.isAnalysing(), 20000);
+  QVERIFY2(wizard.slotStatus(1).contains(QStringLiteral("InvalidSettings")), qPrintable(wizard.slotStatus(1)));
+  QVERIFY(wizard.slotStatus(1).contains(QStringLiteral("320 x 240 px, the settings' camera 640 x 480")));
+  wizard.clearImage(1);
+  QVERIFY(!wizard.hasImage(1));
 
   // The target alone, without the pattern around it: found, but no spots to match.
   wizard.openImage(2, QStringLiteral(IMAGEPRO_DATA_DIR "/samples/sample01_facing.png"));
