@@ -1,5 +1,6 @@
 // imagepro: the desktop application (thesis appendix A).
 //   imagepro [--source virtual|file|camera] [--config FILE] [FILE|FOLDER ...]
+//            [--camera /dev/videoN [--size WxH] [--fps F]]  (start the Camera source on that device)
 //            [--screenshot PNG [--after SECONDS]]   (for the documentation: save the window, quit)
 //            [--measure-responsiveness SECONDS]     (GUI stalls with the Virtual source unpaced: print, quit)
 #include <QApplication>
@@ -8,6 +9,7 @@
 
 #include <cstdio>
 
+#include "app/camera_arguments.h"
 #include "app/main_window.h"
 #include "app/responsiveness_probe.h"
 #include "app/source_kind.h"
@@ -35,7 +37,17 @@ int main(int argc, char** argv) {
                              QStringLiteral("Run the Virtual source unpaced for this many seconds while timing the GUI "
                                             "thread; print the stalls and the frames processed and shown, then quit."),
                              QStringLiteral("seconds"));
+  QCommandLineOption camera(QStringLiteral("camera"),
+                            QStringLiteral("Start the Camera source on this V4L2 device (e.g. /dev/video0)."),
+                            QStringLiteral("device"));
+  QCommandLineOption size(QStringLiteral("size"), QStringLiteral("With --camera: the frame size to ask for, e.g. 640x480."),
+                          QStringLiteral("WxH"));
+  QCommandLineOption fps(QStringLiteral("fps"), QStringLiteral("With --camera: the frame rate to ask for."),
+                         QStringLiteral("rate"));
   parser.addOption(source);
+  parser.addOption(camera);
+  parser.addOption(size);
+  parser.addOption(fps);
   parser.addOption(measure);
   parser.addOption(config);
   parser.addOption(screenshot);
@@ -53,11 +65,34 @@ int main(int argc, char** argv) {
   }
   const QStringList files = parser.positionalArguments();
   if (!files.isEmpty()) kind = SourceKind::File;
+  if (parser.isSet(camera)) {
+    if (!files.isEmpty() || (parser.isSet(source) && kind != SourceKind::Camera)) {
+      std::fprintf(stderr, "imagepro: --camera starts the Camera source: no files or other --source with it\n");
+      return 2;
+    }
+    kind = SourceKind::Camera;
+    imagepro::CameraSourceOptions check;
+    QString error;
+    if (!imagepro::app::applyCameraArguments(parser.value(camera), parser.value(size), parser.value(fps), check, error)) {
+      std::fprintf(stderr, "imagepro: %s\n", qPrintable(error));
+      return 2;
+    }
+  } else if (parser.isSet(size) || parser.isSet(fps)) {
+    std::fprintf(stderr, "imagepro: --size and --fps go with --camera\n");
+    return 2;
+  }
 
   imagepro::app::MainWindow window;
   window.show();
   // A bad settings file is shown in the window; the defaults stay in force.
   if (parser.isSet(config)) window.loadSettingsFile(parser.value(config));
+  if (parser.isSet(camera)) {  // over the settings file's camera_source (checked above)
+    imagepro::Settings settings = window.settings();
+    QString unused;
+    imagepro::app::applyCameraArguments(parser.value(camera), parser.value(size), parser.value(fps),
+                                        settings.camera_source, unused);
+    window.setSettings(settings);
+  }
   window.selectSource(kind);
   if (parser.isSet(measure)) {
     bool seconds_ok = false;
@@ -78,7 +113,7 @@ int main(int argc, char** argv) {
     return app.exec();
   }
   if (!files.isEmpty()) window.openPaths(files);
-  else if (parser.isSet(source) && kind != SourceKind::File) window.startSource();
+  else if ((parser.isSet(source) || parser.isSet(camera)) && kind != SourceKind::File) window.startSource();
   if (parser.isSet(screenshot)) {
     bool seconds_ok = false;
     const double seconds = parser.value(after).toDouble(&seconds_ok);

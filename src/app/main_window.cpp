@@ -176,7 +176,8 @@ void MainWindow::buildStatusBar() {
   status_source_->setObjectName(QStringLiteral("statusSource"));
   status_rate_->setObjectName(QStringLiteral("statusRate"));
   status_state_->setObjectName(QStringLiteral("statusState"));
-  statusBar()->addPermanentWidget(status_state_, 1);
+  // A normal widget, so a message (an error, a warning) takes its place for a while.
+  statusBar()->addWidget(status_state_, 1);
   statusBar()->addPermanentWidget(status_rate_);
   statusBar()->addPermanentWidget(status_source_);
 }
@@ -192,6 +193,8 @@ void MainWindow::connectWorker() {
     control_panel_->sourcePanel()->setDescription(description);
   });
   connect(worker_, &Worker::errorOccurred, this, &MainWindow::showError);
+  connect(worker_, &Worker::warningOccurred, this,
+          [this](const QString& message) { statusBar()->showMessage(tr("Warning: %1").arg(message), 15000); });
   connect(worker_, &Worker::dataOutChanged, this, [this](const QString& path) {
     data_out_path_ = path;
     control_panel_->outputPanel()->setDataOutPath(path);

@@ -147,7 +147,13 @@ void MainWindow::loadSettingsDialog() {
 }
 
 void MainWindow::settingsDialog() {
-  auto* dialog = new SettingsDialog(settings_, this);
+  // Camera controls go through the worker, which sets them on the streaming camera.
+  CameraDevices devices = CameraDevices::system();
+  devices.set = [worker = worker_](const std::string& device, const std::string& key, std::int64_t value) {
+    worker->setCameraControl(QString::fromStdString(device), QString::fromStdString(key), value);
+    return std::string();  // a refusal arrives as the worker's error
+  };
+  auto* dialog = new SettingsDialog(settings_, this, std::move(devices));
   dialog->setAttribute(Qt::WA_DeleteOnClose);
   connect(dialog, &SettingsDialog::applied, this, [this, dialog] {
     Settings next = settings_;

@@ -17,16 +17,19 @@ const QString kDeg = QStringLiteral(" deg");
 const QString kPx = QStringLiteral(" px");
 }  // namespace
 
-SettingsDialog::SettingsDialog(const Settings& settings, QWidget* parent)
+SettingsDialog::SettingsDialog(const Settings& settings, QWidget* parent, CameraDevices devices)
     : QDialog(parent), ui_(std::make_unique<Ui::SettingsDialog>()), settings_(settings),
       binder_(new SettingsBinder(settings_, this)) {
   ui_->setupUi(this);
+  camera_page_ = new CameraSettingsPage(settings_, std::move(devices));
+  ui_->tabs->insertTab(ui_->tabs->indexOf(ui_->cameraTab) + 1, camera_page_, tr("Camera device"));
   buildTarget();
   buildCamera();
   buildDistortion();
   buildVirtual();
   buildScene();
   binder_->refresh();
+  connect(binder_, &SettingsBinder::changed, camera_page_, &CameraSettingsPage::cameraModelChanged);
   ui_->note->setText(tr("The camera and distortion apply to every source; the virtual source renders with them."));
   connect(ui_->buttons, &QDialogButtonBox::accepted, this, [this] {
     emit applied();
@@ -42,6 +45,7 @@ void SettingsDialog::applyTo(Settings& into) const {
   into.camera = settings_.camera;
   into.target = settings_.target;
   into.virtual_scene = settings_.virtual_scene;
+  into.camera_source = settings_.camera_source;
 }
 
 void SettingsDialog::buildTarget() {

@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "core/camera/camera_source.h"
+#include "core/camera/camera_settings.h"
 #include "core/camera/video_file.h"
 #include "core/source/image_file.h"
 #include "core/source/sources.h"
@@ -34,7 +34,7 @@ bool expandPaths(const QStringList& paths, std::vector<std::string>& files, std:
 }  // namespace
 
 std::unique_ptr<FrameSource> createSource(SourceKind kind, const Settings& settings, const QStringList& paths,
-                                          std::string& error) {
+                                          std::string& error, std::vector<std::string>& warnings) {
   switch (kind) {
     case SourceKind::Virtual:
       return makeVirtualSource(settings);
@@ -52,12 +52,12 @@ std::unique_ptr<FrameSource> createSource(SourceKind kind, const Settings& setti
       return makeFileSource(std::move(files));
     }
     case SourceKind::Camera: {
-      // The default device at the thesis's 25 Hz; device choice and controls come later.
-      auto camera = std::make_unique<CameraSource>(CameraRequest{});
+      auto camera = std::make_unique<CameraSource>(cameraRequest(settings));
       if (!ok(camera->start())) {
         error = camera->lastError();
         return nullptr;
       }
+      applyStoredControls(*camera, settings.camera_source.controls, warnings);
       return camera;
     }
   }
@@ -65,8 +65,24 @@ std::unique_ptr<FrameSource> createSource(SourceKind kind, const Settings& setti
   return nullptr;
 }
 
-void updateSource(FrameSource& source, SourceKind kind, const Settings& settings) {
+bool updateSource(FrameSource& source, SourceKind kind, const Settings& settings) {
   if (kind == SourceKind::Virtual) static_cast<VirtualSource&>(source).setSettings(settings);
+  if (kind == SourceKind::Camera) {
+    const CameraRequest& now = static_cast<CameraSource&>(source).request();
+    const CameraRequest wanted = cameraRequest(settings);
+    return now.device == wanted.device && now.width == wanted.width && now.height == wanted.height &&
+           now.frame_rate_hz == wanted.frame_rate_hz;
+  }
+  return true;
+}
+
+Status setCameraControl(FrameSource* source, SourceKind kind, const std::string& device, const std::string& key,
+                        std::int64_t value, std::string& error) {
+  if (source && kind == SourceKind::Camera) {
+    auto& camera = static_cast<CameraSource&>(*source);
+    if (camera.request().device == device) return setControlByKey(camera, key, value, error);
+  }
+  return setDeviceControl(systemDeviceIo(), device, key, value, error);
 }
 
 void pressSourceKey(FrameSource& source, SourceKind kind, VirtualKey key) {

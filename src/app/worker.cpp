@@ -100,6 +100,14 @@ void Worker::setDataOut(const QString& path, ExistingFile existing, bool replace
                             Qt::QueuedConnection);
 }
 
+void Worker::setCameraControl(const QString& device, const QString& key, qint64 value) {
+  QMetaObject::invokeMethod(this, [this, device, key, value] {
+    std::string error;
+    if (!ok(imagepro::app::setCameraControl(source_.get(), kind_, device.toStdString(), key.toStdString(), value, error)))
+      emit errorOccurred(QString::fromStdString(error));
+  }, Qt::QueuedConnection);
+}
+
 void Worker::closeDataOut() {
   QMetaObject::invokeMethod(this, [this] {
     data_out_.close();
@@ -129,7 +137,9 @@ Settings Worker::appliedSettings() const {
 
 bool Worker::ensureSource(SourceKind kind, const QStringList& paths) {
   std::string error;
-  source_ = createSource(kind, engine_.settings(), paths, error);
+  std::vector<std::string> warnings;
+  source_.reset();  // a camera frees its device before it is opened again
+  source_ = createSource(kind, engine_.settings(), paths, error, warnings);
   kind_ = kind;
   have_file_frame_ = false;
   if (!source_) {
@@ -137,6 +147,7 @@ bool Worker::ensureSource(SourceKind kind, const QStringList& paths) {
     emit sourceChanged(sourceKindLabel(kind) + QStringLiteral(": unavailable"));
     return false;
   }
+  for (const std::string& w : warnings) emit warningOccurred(QString::fromStdString(w));
   emit sourceChanged(QString::fromStdString(source_->describe()));
   return true;
 }
@@ -200,8 +211,13 @@ bool Worker::applyPending() {
   }
   if (settings) {
     engine_.setSettings(*settings);
-    if (source_) {
-      updateSource(*source_, kind_, *settings);
+    if (source_ && !updateSource(*source_, kind_, *settings)) {
+      // A camera asked for another device, size or rate: opened anew, or stopped with the error.
+      if (!ensureSource(kind_, {})) {
+        timer_->stop();
+        setRunning(false);
+      }
+    } else if (source_) {
       emit sourceChanged(QString::fromStdString(source_->describe()));
     }
   }
@@ -222,6 +238,7 @@ void Worker::onIdleUpdate() {
 void Worker::tick() {
   if (!running_.load() || !source_) return;
   applyPending();
+  if (!source_) return;  // a camera that could not be opened anew
   if (!processFrame(true)) {
     doStop();
     return;

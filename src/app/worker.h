@@ -51,6 +51,9 @@ class Worker : public QObject {
   // `replace` (the user agreed) it is deleted first.
   void setDataOut(const QString& path, ExistingFile existing, bool replace = false);
   void closeDataOut();
+  // Sets a camera control now: on the streaming camera when it streams from `device`,
+  // else on the device directly. A refusal comes back as errorOccurred.
+  void setCameraControl(const QString& device, const QString& key, qint64 value);
   // A copy of the frame last taken from the source (for File input, the still image shown),
   // answered with frameCaptured(request, ...): empty when there is none (nothing started or
   // opened yet, or a camera that was stopped and gave its buffers back).
@@ -66,6 +69,7 @@ class Worker : public QObject {
   void runningChanged(bool running);
   void sourceChanged(const QString& description);
   void errorOccurred(const QString& message);
+  void warningOccurred(const QString& message);  // the source goes on (a camera control not set)
   void dataOutChanged(const QString& path);  // empty when closed
   void frameCaptured(quint64 request, cv::Mat grey, QString source, bool running);
 

@@ -134,4 +134,20 @@ class AnalysisWindowTest : public QObject {
   std::unique_ptr<AnalysisWindow> window_;
 };
 
+// The Settings dialog's Camera device page (controls from a hand-made device, no camera,
+// a device that cannot be opened), the camera on the command line, a missing camera started.
+class CameraSettingsTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void init();
+  void cleanup();
+  void noCameraFoundAndTheRestWorks();
+  void deviceThatCannotBeOpenedShowsItsStatus();
+  void controlWidgetsFollowTheDevice();
+  void missingCameraFromTheDialogIsNamedWhenStarted();
+  void commandLineChoosesTheCamera();
+ private:
+  std::unique_ptr<MainWindow> window_;
+};
+
 }  // namespace imagepro::app::test

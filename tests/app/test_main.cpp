@@ -28,8 +28,9 @@ int main(int argc, char** argv) {
   imagepro::app::test::SettingsFileTest settings;
   imagepro::app::test::CalibrationWizardTest calibration;
   imagepro::app::test::AnalysisWindowTest analysis;
+  imagepro::app::test::CameraSettingsTest camera_settings;
   for (QObject* t : std::initializer_list<QObject*>{&panels, &worker, &virtual_source, &files, &outputs, &settings,
-                                                      &calibration, &analysis})
+                                                      &calibration, &analysis, &camera_settings})
     failed += QTest::qExec(t, argc, argv);
   return failed == 0 ? 0 : 1;
 }
