@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli/allocation_counter.h"
+#include "cli/bench_camera.h"
 #include "cli/command.h"
 #include "cli/peers/apriltag_peer.h"
 #include "cli/peers/opencv_peer.h"
@@ -232,6 +233,7 @@ std::string jsonResolution(const ResolutionResult& r) {
 }
 
 int run(const Args& args) {
+  if (args.has("camera")) return runCameraBench(args);
   args.rejectUnknown({"frames", "resolution", "format"});
   const int frames = args.integer("frames", 200);
   if (frames < 10) throw UsageError("--frames must be at least 10");
@@ -288,7 +290,14 @@ const CommandRegistration kRegistration{{
     "(Otsu, findContours, fitEllipseDirect, solvePnP) and AprilTag 3 — same frames, same run.\n"
     "Prints frames/s, ratios, per-stage median and 99th-percentile microseconds, heap\n"
     "allocations per frame and peak memory. --resolution all also runs 1280x720 and 1920x1080.\n"
-    "--format json prints one object with full_frame_hz, tracked_hz, opencv_pipeline_hz, apriltag_hz.",
+    "--format json prints one object with full_frame_hz, tracked_hz, opencv_pipeline_hz, apriltag_hz.\n\n"
+    "usage: imagepro-cli bench --camera /dev/videoN [--size WxH] [--fps N] [--frames N] [--config FILE]\n"
+    "                          [--format text|json]\n\n"
+    "Times the engine on N frames (default 200) grabbed live from a V4L2 camera (size and rate\n"
+    "as for reconstruct --camera, stored controls set): each frame is processed by an engine\n"
+    "that tracks and by one that searches the whole frame. Prints the camera's rate by the\n"
+    "driver's clock, dropped frames, each engine's median and 99th-percentile microseconds\n"
+    "and frames/s, and whether the live loop is capture-limited or engine-limited.",
     {},
     run,
 }};

@@ -95,6 +95,35 @@ TEST(Cli, MalformedSettingsNameTheKey) {
   EXPECT_EQ(cli("settings --config " + (dir / "missing.json").string()).exit_code, 1);
 }
 
+TEST(Cli, MissingCameraIsOneNamedLineAndExitOne) {
+  const std::string device = "/dev/video-imagepro-missing";
+  for (const std::string command : {"bench", "reconstruct"}) {
+    const CliRun r = cli(command + " --camera " + device + " --size 320x240 --fps 30 --frames 20");
+    EXPECT_EQ(r.exit_code, 1) << command;
+    ASSERT_EQ(lines(r.err).size(), 1u) << command << ": " << r.err;
+    EXPECT_NE(r.err.find(device + ": no camera device at that path"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << command << ": " << r.out;
+  }
+  // Settings that name the missing camera: the same from the device stored in them.
+  const fs::path dir = freshDir("cli_camera");
+  std::string e;
+  ASSERT_TRUE(writeFileAtomically((dir / "camera.json").string(),
+                                  R"({"camera_source": {"device": "/dev/video-imagepro-missing", "frame_rate_hz": 30}})", e));
+  CliRun r = cli("bench --config " + (dir / "camera.json").string() + " --camera " + device);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(device), std::string::npos) << r.err;
+  // Usage problems come before the device is touched.
+  r = cli("bench --camera " + device + " --frames 3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--frames"), std::string::npos) << r.err;
+  r = cli("bench --camera " + device + " --size big");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
+  r = cli("bench --camera " + device + " --resolution 640x480");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--resolution"), std::string::npos) << r.err;
+}
+
 TEST(Cli, ReconstructWritesARowPerFrameEvenForBadFiles) {
   const fs::path dir = freshDir("cli_reconstruct");
   CliRun r = cli("render --out " + dir.string() + " --frames 2 --mode binary");
