@@ -11,13 +11,15 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLineSeries>
-#include <QMenuBar>
 #include <QLabel>
+#include <QMenuBar>
 #include <QProcess>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QTest>
+
+#include <opencv2/imgcodecs.hpp>
 
 #include <cmath>
 
@@ -29,6 +31,7 @@
 #include "app_test_classes.h"
 #include "app_test_support.h"
 #include "core/analysis/pendulum_scene.h"
+#include "core/analysis/two_targets.h"
 #include "core/pipeline/data_out.h"
 #include "core/pipeline/engine.h"
 #include "core/source/virtual_motion.h"
@@ -391,6 +394,44 @@ void AnalysisWindowTest::liveTwoTargetsNeedTwoTargets() {
   QVERIFY(w.message().contains(QString::fromUtf8(statusMessage(Status::TooFewTargets).data())));
   QVERIFY(r.frames.size() >= 5);
   for (const TwoTargetFrame& f : r.frames) QCOMPARE(f.status[0], Status::TooFewTargets);
+}
+
+void AnalysisWindowTest::liveTwoTargetsFromImageFiles() {
+  // Pictures of the two-target object played as the main window's File input: the
+  // frames it shows are measured on the analysis thread, both targets of each.
+  Settings s;
+  s.camera.distortion = kThesisCameraDistortion;
+  s.virtual_scene.noise_sigma = 2.0;
+  const QString dir = scratchDir(QStringLiteral("analysis-two-target-images"));
+  TwoTargetRenderWorkspace ws;
+  cv::Mat image;
+  for (int i = 0; i < 3; ++i) {
+    renderTwoTargets(s.camera, s.target, s.virtual_scene, TwoTargetObject{}, twoTargetStudyPosition(1), image,
+                     static_cast<std::uint64_t>(i), ws);
+    QVERIFY(cv::imwrite(QStringLiteral("%1/object%2.png").arg(dir).arg(i).toStdString(), image));
+  }
+  main_->setSettings(s);
+  main_->show();
+  AnalysisWindow& w = *window_;
+  w.setStudy(AnalysisStudy::TwoTargets);
+  w.setInput(AnalysisInput::LiveStream);
+  w.run();
+  main_->openPaths({dir});
+  QTRY_VERIFY_WITH_TIMEOUT(!main_->worker()->isRunning() && main_->worker()->framesProcessed() == 3, 30000);
+  QTRY_VERIFY_WITH_TIMEOUT(w.collectedFrames() >= 1, 30000);
+  QTest::qWait(200);  // the last file's packet
+  QVERIFY(runAndWait(w));
+  const TwoTargetStudyResult& r = w.twoTargetResult();
+  QCOMPARE(r.status, Status::Ok);
+  QVERIFY(!r.frames.empty() && r.frames.size() <= 3);  // the frames shown, each once
+  for (const TwoTargetFrame& f : r.frames) {
+    QCOMPARE(f.status[0], Status::Ok);
+    QVERIFY(std::abs(f.measurement[0].distance_mm - r.object.spacing_mm) < 0.5);
+    QVERIFY(std::abs(f.measurement[0].angle_deg - r.object.angle_deg) < 0.5);
+  }
+  QCOMPARE(r.summaries.size(), std::size_t{2});  // one group: with and without correction
+  QCOMPARE(r.summaries[0].position, 0);
+  QVERIFY(w.summaryText().contains(QStringLiteral("live")));
 }
 
 void AnalysisWindowTest::closingTheMainWindowWhileBusyIsSafe() {

@@ -127,6 +127,7 @@ class AnalysisWindowTest : public QObject {
   void cancelStopsTheRun();
   void livePendulumIsCollected();
   void liveTwoTargetsNeedTwoTargets();
+  void liveTwoTargetsFromImageFiles();
   void closingTheMainWindowWhileBusyIsSafe();
   void responsivenessProbeReports();
  private:
