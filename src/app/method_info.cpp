@@ -10,53 +10,70 @@ QString tr(const char* text) { return QObject::tr(text); }
 
 QString methodToolTip(ThresholdMethod m) {
   switch (m) {
-    case ThresholdMethod::None: return tr("No re-thresholding: the first binary image is used for the target (thesis 2.3)");
+    case ThresholdMethod::None: return tr("None: no re-thresholding; the target's crop is cut at the frame's own threshold (thesis A.1.1, Re-Thresholding panel: the by-pass)");
     case ThresholdMethod::Manual: return tr("Manual: the constant threshold Val, pixels above it are white (thesis 2.3, eq. 2.1)");
-    case ThresholdMethod::AtOrig: return tr("AT-Orig: Kittler-Illingworth minimum error threshold, sums recomputed for every t (thesis 2.3, eqs. 2.4-2.10)");
-    case ThresholdMethod::AtMod: return tr("AT-Mod: the same minimum error criterion, computed incrementally with moment vectors (thesis 2.3, eqs. 2.11-2.17)");
+    case ThresholdMethod::AtOrig: return tr("AT-Orig: Kittler-Illingworth minimum error threshold, the sums recomputed for every t (thesis 2.3.1, eqs. 2.4-2.10)");
+    case ThresholdMethod::AtMod: return tr("AT-Mod: the same minimum error criterion, computed incrementally with moment vectors (thesis 2.3.2, eqs. 2.11-2.17)");
   }
   return {};
 }
 
 QString methodToolTip(EdgeMethod m) {
   switch (m) {
-    case EdgeMethod::SobelThinning: return tr("Sobel + thinning: gradient magnitude and three-pixel thinning, the earlier method (thesis 2.4, eq. 2.21)");
-    case EdgeMethod::Laplace: return tr("Laplace: a white pixel with a black 4-neighbour, Sobel gradients at edge pixels only (thesis 2.4, eq. 2.25)");
+    case EdgeMethod::SobelThinning: return tr("Sobel + thinning: every pixel with a non-zero Sobel gradient, then the three-pixel thinning; the earlier method, kept for comparison (thesis 2.4.1-2.4.2, eq. 2.21)");
+    case EdgeMethod::Laplace: return tr("Laplace: a white pixel with a black 4-neighbour, one pixel thick; Sobel gradients at the edge pixels only (thesis 2.4.3, eq. 2.25)");
   }
   return {};
 }
 
 QString methodToolTip(ConnectivityMethod m) {
   switch (m) {
-    case ConnectivityMethod::CN0: return tr("CN0: the corrected grouping of the earlier study, O(n^2) (thesis 2.5)");
-    case ConnectivityMethod::CN1: return tr("CN1: one-pass grouping of 8-connected edge pixels, O(n) (thesis 2.5)");
+    case ConnectivityMethod::CN0: return tr("CN0: the earlier study's grouping, its bugs and path limit removed; scans every unassigned pixel, O(n^2) (thesis 2.5)");
+    case ConnectivityMethod::CN1: return tr("CN1: one-pass grouping of 8-connected edge pixels through an index image, O(n) (thesis 2.5.1)");
   }
   return {};
 }
 
 QString methodToolTip(EllipseMethod m) {
   switch (m) {
-    case EllipseMethod::Bennett: return tr("Bennett: per-path accumulator with score, quality and symmetry rules (thesis 2.6.1)");
-    case EllipseMethod::DirectFit: return tr("Direct fit: Fitzgibbon's least-squares ellipse fit, accepted by its relative error (thesis 2.6.2, eq. 2.42)");
+    case EllipseMethod::Bennett: return tr("Bennett: one accumulator per connected path, accepted by its symmetry, quality, score and peak-share rules; the ellipse itself from the direct fit of the path (thesis 2.6.1, eqs. 2.26-2.28)");
+    case EllipseMethod::DirectFit: return tr("Direct fit: Fitzgibbon's least-squares ellipse fit of each path, accepted by the accept rule (E_rel of eq. 2.42 or the Sampson distance) when the path also traces the ellipse (thesis 2.6.2)");
   }
   return {};
 }
 
 QString methodToolTip(FitAcceptRule m) {
   switch (m) {
-    case FitAcceptRule::RelativeError: return tr("Accept a fit whose relative error E_rel is below the limit (thesis 2.6.2, eq. 2.42)");
-    case FitAcceptRule::SampsonDistance: return tr("Accept a fit whose mean Sampson distance in pixels is below the limit (scale invariant)");
+    case FitAcceptRule::RelativeError: return tr("Accept a fit whose relative error E_rel (in the fit's normalised coordinates) is below Max E_rel and whose path traces it (thesis 2.6.2, eq. 2.42)");
+    case FitAcceptRule::SampsonDistance: return tr("Accept a fit whose mean Sampson distance in pixels is below Max Sampson and whose path traces it (beyond the thesis 2.6.2)");
   }
   return {};
 }
 
 QString methodToolTip(ContourMode m) {
   switch (m) {
-    case ContourMode::EightPointsOrg: return tr("8 points ORG: eight contour points, the original method (thesis appendix A, Reconstruction)");
-    case ContourMode::EightPointsMod: return tr("8 points MOD: eight contour points, the more reliable version (thesis appendix A, Reconstruction)");
-    case ContourMode::FullPathOrg: return tr("Full path ORG: every contour pixel, the original method (thesis appendix A, Reconstruction)");
-    case ContourMode::FullPathMod: return tr("Full path MOD: every contour pixel, the more reliable version (thesis appendix A, Reconstruction)");
-    case ContourMode::SubPixel: return tr("Sub-pixel: the grey-level edge along the gradient (beyond the thesis, its recommendation 6.3)");
+    case ContourMode::EightPointsOrg:
+      return tr("8 points ORG: from the detected centre, walk pixel by pixel along the 8 directions E, SE, S, ... "
+                "across the centre spot, then across white; the last white pixel before black, at its pixel centre. "
+                "The earlier study's method (thesis A.1.1, Reconstruction panel)");
+    case ContourMode::EightPointsMod:
+      return tr("8 points MOD: the same 8 rays, walked in 1/16 px steps from outside the detected rim inwards within "
+                "+-w px of it (w = 2.5 px + 4 % of the semi-major axis); the point between the last black and the first "
+                "white sample, that white followed by a second white pixel. The improved version (thesis A.1.1, "
+                "Reconstruction panel)");
+    case ContourMode::FullPathOrg:
+      return tr("Full path ORG: the disk's outer boundary in the binary crop: the first and the last white pixel of "
+                "every row and every column, each pixel once, at its pixel centre. The earlier study's method "
+                "(thesis A.1.1, Reconstruction panel)");
+    case ContourMode::FullPathMod:
+      return tr("Full path MOD: one point per row or column crossing of the rim (rows where it runs closer to vertical, "
+                "columns elsewhere), searched from outside inwards within +-w px of the detected rim: the first white "
+                "pixel after black and before a second white one, the point on the pixel boundary. The improved "
+                "version (thesis A.1.1, Reconstruction panel)");
+    case ContourMode::SubPixel:
+      return tr("Sub-pixel: full path MOD's crossings (about 160 on a large rim) placed in the grey levels, by the area "
+                "under the grey profile across the edge, or where the profile crosses the mean of its two plateaus; "
+                "independent of the threshold (beyond the thesis: its recommendation 6.3)");
   }
   return {};
 }
@@ -64,8 +81,8 @@ QString methodToolTip(ContourMode m) {
 QString methodToolTip(TrackingMode m) {
   switch (m) {
     case TrackingMode::Off: return tr("No tracking: every frame is searched whole");
-    case TrackingMode::Corners2D: return tr("2D corners: extrapolate the corners of the detected region (thesis 3.3)");
-    case TrackingMode::Parameters3D: return tr("3D parameters: extrapolate the six parameters and project the target (thesis 3.3)");
+    case TrackingMode::Corners2D: return tr("2D corners: polynomials over the last points of the target box's upper-left and lower-right corners give the next box (thesis 3.2.2.1)");
+    case TrackingMode::Parameters3D: return tr("3D parameters: polynomials over the last six parameters give the next pose, the target projected through the camera gives the box (thesis 3.2.2.2)");
   }
   return {};
 }

@@ -4,6 +4,8 @@
 #include <QLabel>
 #include <QVBoxLayout>
 
+#include <vector>
+
 #include "app/panels.h"
 
 namespace imagepro::app {
@@ -75,27 +77,79 @@ QWidget* ellipsePanel(SettingsBinder& binder) {
   auto* max_score = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_max_score; }, 0.0, 1e9, 0), "bennettMaxScore");
   auto* min_quality = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_min_quality; }, 0.0, 1e9, 0), "bennettMinQuality");
   auto* max_quality = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_max_quality; }, 0.0, 1e9, 0), "bennettMaxQuality");
+  auto* min_peak = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_min_peak_fraction; }, 0.0, 1.0, 4),
+                         "bennettMinPeakFraction",
+                         QObject::tr("Least share of the path's point pairs that must vote for the accumulator's peak "
+                                     "(thesis 2.6.1, rule 3; 1/16 measured on the synthetic library)"));
+  auto* max_points = named(binder.intSpin([e](Settings& s) -> auto& { return e(s).bennett_max_points; }, 0, 100000, QStringLiteral(" px")),
+                           "bennettMaxPoints",
+                           QObject::tr("Longer paths vote with a random sample of this many pixels, all pairs of them "
+                                       "(0: never sampled; thesis 2.6.1)"));
   for (auto* w : {min_score, max_score}) w->setToolTip(QObject::tr("Bennett accumulation score range (thesis 2.6.1, rule 3)"));
   for (auto* w : {min_quality, max_quality}) w->setToolTip(QObject::tr("Bennett quality factor range (thesis 2.6.1, rule 2)"));
+  auto* trace_inlier = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).trace_inlier_px; }, 0.0, 100.0, 2, QStringLiteral(" px")),
+                             "ellipseTraceInlier",
+                             QObject::tr("The trace: a path pixel within this distance of the fitted ellipse traces the "
+                                         "arc (about 3 px of perimeter) its foot lies on"));
+  auto* min_traced = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).min_traced_fraction; }, 0.0, 1.0, 3),
+                           "ellipseMinTraced",
+                           QObject::tr("Direct fit: share of the ellipse's perimeter inside the image that its path must "
+                                       "trace (a rectangle fails it at its blunt ends)"));
+  auto* min_arc = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).min_arc_fraction; }, 0.0, 1.0, 3),
+                        "ellipseMinArc",
+                        QObject::tr("Direct fit: share of the whole perimeter the path must trace, so that an ellipse "
+                                    "cut by the image border (thesis fig. 2.27) passes only with enough of it inside"));
+  auto* robust = named(binder.check(QObject::tr("Consensus refit (occluded contour)"), [e](Settings& s) -> auto& { return e(s).robust_fit; }),
+                       "ellipseRobustFit",
+                       QObject::tr("Direct fit: when no ellipse holds the target's spots, a path that may hold them but "
+                                   "fails the fit (an occluder's edges in its contour, thesis fig. 2.28) is refitted on "
+                                   "the inliers of the six-point fit whose ellipse it traces most"));
+  auto* robust_iterations = named(binder.intSpin([e](Settings& s) -> auto& { return e(s).robust_iterations; }, 1, 100000),
+                                  "ellipseRobustIterations",
+                                  QObject::tr("Consensus refit: at most this many six-point fits (fewer once 99 % sure "
+                                              "of one clean sample)"));
+  auto* robust_traced = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).robust_min_traced_fraction; }, 0.0, 1.0, 3),
+                              "ellipseRobustMinTraced",
+                              QObject::tr("Consensus refit: share of the observable ellipse its inliers must trace; it "
+                                          "must also pass the accept rule on them"));
+  auto* spot_tolerance = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).target_spot_tolerance; }, 0.0, 1.0, 3),
+                               "ellipseSpotTolerance",
+                               QObject::tr("Target selection: how far, in disk radii, the centre spot may lie from the "
+                                           "ellipse's centre and the offset spot from rf/R beside it"));
   form->addRow(QObject::tr("Accept by"), accept);
   form->addRow(QObject::tr("Max E_rel"), max_rel);
   form->addRow(QObject::tr("Max Sampson"), max_sampson);
   form->addRow(QObject::tr("Min path"), min_path);
+  form->addRow(QObject::tr("Trace within"), trace_inlier);
+  form->addRow(QObject::tr("Min traced"), min_traced);
+  form->addRow(QObject::tr("Min arc"), min_arc);
+  form->addRow(robust);
+  form->addRow(QObject::tr("Refit tries"), robust_iterations);
+  form->addRow(QObject::tr("Refit traced"), robust_traced);
   form->addRow(QObject::tr("Score min"), min_score);
   form->addRow(QObject::tr("Score max"), max_score);
   form->addRow(QObject::tr("Quality min"), min_quality);
   form->addRow(QObject::tr("Quality max"), max_quality);
+  form->addRow(QObject::tr("Peak share"), min_peak);
+  form->addRow(QObject::tr("Max points"), max_points);
+  form->addRow(QObject::tr("Spot tolerance"), spot_tolerance);
+  form->addRow(named(binder.check(QObject::tr("Require the target's spots"), [e](Settings& s) -> auto& { return e(s).require_target_spots; }),
+                     "ellipseRequireSpots",
+                     QObject::tr("NoTarget unless an ellipse holds the target's two spots; off, the thesis's rule: the "
+                                 "best ellipse (lowest error, highest Bennett score) when none does")));
   form->addRow(named(binder.check(QObject::tr("Report all targets"), [e](Settings& s) -> auto& { return e(s).report_all_targets; }),
-                     "ellipseReportAll", QObject::tr("Show every target found instead of failing with AmbiguousTarget")));
-  binder.onAnyUpdate([&binder, accept, max_rel, max_sampson, min_score, max_score, min_quality, max_quality] {
+                     "ellipseReportAll", QObject::tr("Two targets or more: report every one found instead of failing with AmbiguousTarget")));
+  const std::vector<QWidget*> fit_only{accept, min_traced, min_arc, robust};
+  const std::vector<QWidget*> bennett_only{min_score, max_score, min_quality, max_quality, min_peak, max_points};
+  binder.onAnyUpdate([&binder, fit_only, bennett_only, max_rel, max_sampson, robust_iterations, robust_traced] {
     const EllipseOptions& o = binder.model().pipeline.ellipse;
     const bool fit = o.method == EllipseMethod::DirectFit;
-    accept->setEnabled(fit);
+    for (QWidget* w : fit_only) w->setEnabled(fit);
+    for (QWidget* w : bennett_only) w->setEnabled(!fit);
     max_rel->setEnabled(fit && o.accept_rule == FitAcceptRule::RelativeError);
     max_sampson->setEnabled(fit && o.accept_rule == FitAcceptRule::SampsonDistance);
-    for (QWidget* w : {static_cast<QWidget*>(min_score), static_cast<QWidget*>(max_score),
-                       static_cast<QWidget*>(min_quality), static_cast<QWidget*>(max_quality)})
-      w->setEnabled(!fit);
+    robust_iterations->setEnabled(fit && o.robust_fit);
+    robust_traced->setEnabled(fit && o.robust_fit);
   });
   return box;
 }

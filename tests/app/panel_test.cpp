@@ -66,17 +66,29 @@ void PanelTest::edgeAndConnectivityPanels() {
 
 void PanelTest::ellipsePanel() {
   MainWindow& w = *window_;
+  const EllipseOptions defaults;
   QVERIFY(choose(find<QComboBox>(w, "ellipseMethod"), EllipseMethod::Bennett));
   auto* min_score = find<QDoubleSpinBox>(w, "bennettMinScore");
-  QVERIFY(min_score && min_score->isEnabled());
+  auto* min_peak = find<QDoubleSpinBox>(w, "bennettMinPeakFraction");
+  auto* max_points = find<QSpinBox>(w, "bennettMaxPoints");
+  QVERIFY(min_score && min_score->isEnabled() && min_peak && min_peak->isEnabled() && max_points && max_points->isEnabled());
+  QCOMPARE(min_peak->value(), defaults.bennett_min_peak_fraction);
+  QCOMPARE(max_points->value(), defaults.bennett_max_points);
+  // The direct fit's own controls mean nothing to Bennett.
+  for (const char* name : {"ellipseMinTraced", "ellipseMinArc", "ellipseRobustFit", "ellipseRobustIterations",
+                           "ellipseRobustMinTraced"})
+    QVERIFY2(!find<QWidget>(w, name)->isEnabled(), name);
   min_score->setValue(500.0);
   find<QDoubleSpinBox>(w, "bennettMaxQuality")->setValue(400.0);
+  min_peak->setValue(0.08);
+  max_points->setValue(128);
   QVERIFY(waitForApplied(w, [](const Settings& s) {
     const EllipseOptions& e = s.pipeline.ellipse;
-    return e.method == EllipseMethod::Bennett && e.bennett_min_score == 500.0 && e.bennett_max_quality == 400.0;
+    return e.method == EllipseMethod::Bennett && e.bennett_min_score == 500.0 && e.bennett_max_quality == 400.0 &&
+           e.bennett_min_peak_fraction == 0.08 && e.bennett_max_points == 128;
   }));
   QVERIFY(choose(find<QComboBox>(w, "ellipseMethod"), EllipseMethod::DirectFit));
-  QVERIFY(!min_score->isEnabled());
+  QVERIFY(!min_score->isEnabled() && !min_peak->isEnabled() && !max_points->isEnabled());
   QVERIFY(choose(find<QComboBox>(w, "ellipseAcceptRule"), FitAcceptRule::SampsonDistance));
   find<QDoubleSpinBox>(w, "ellipseMaxSampson")->setValue(0.75);
   find<QSpinBox>(w, "ellipseMinPath")->setValue(33);
@@ -87,6 +99,40 @@ void PanelTest::ellipsePanel() {
            e.max_sampson_distance_px == 0.75 && e.min_path_pixels == 33 && e.report_all_targets;
   }));
   QVERIFY(!find<QDoubleSpinBox>(w, "ellipseMaxRelativeError")->isEnabled());
+
+  // The trace, the consensus refit for an occluded contour, and target selection.
+  auto* robust = find<QCheckBox>(w, "ellipseRobustFit");
+  auto* iterations = find<QSpinBox>(w, "ellipseRobustIterations");
+  auto* robust_traced = find<QDoubleSpinBox>(w, "ellipseRobustMinTraced");
+  QVERIFY(robust && iterations && robust_traced);
+  QCOMPARE(robust->isChecked(), defaults.robust_fit);
+  QVERIFY(robust->isEnabled() && iterations->isEnabled() && robust_traced->isEnabled());
+  robust->click();
+  QVERIFY(!iterations->isEnabled() && !robust_traced->isEnabled());  // only mean something with the refit on
+  QVERIFY(waitForApplied(w, [](const Settings& s) { return !s.pipeline.ellipse.robust_fit; }));
+  robust->click();
+  QVERIFY(iterations->isEnabled());
+  find<QDoubleSpinBox>(w, "ellipseTraceInlier")->setValue(1.5);
+  find<QDoubleSpinBox>(w, "ellipseMinTraced")->setValue(0.9);
+  find<QDoubleSpinBox>(w, "ellipseMinArc")->setValue(0.45);
+  iterations->setValue(400);
+  robust_traced->setValue(0.6);
+  find<QDoubleSpinBox>(w, "ellipseSpotTolerance")->setValue(0.35);
+  auto* require = find<QCheckBox>(w, "ellipseRequireSpots");
+  QCOMPARE(require->isChecked(), defaults.require_target_spots);
+  require->click();
+  QVERIFY(waitForApplied(w, [defaults](const Settings& s) {
+    const EllipseOptions& e = s.pipeline.ellipse;
+    return e.robust_fit && e.trace_inlier_px == 1.5 && e.min_traced_fraction == 0.9 && e.min_arc_fraction == 0.45 &&
+           e.robust_iterations == 400 && e.robust_min_traced_fraction == 0.6 && e.target_spot_tolerance == 0.35 &&
+           e.require_target_spots == !defaults.require_target_spots &&
+           e.bennett_min_peak_fraction == 0.08 && e.bennett_max_points == 128;  // kept while unused
+  }));
+  // Every new control says what it does.
+  for (const char* name : {"bennettMinPeakFraction", "bennettMaxPoints", "ellipseTraceInlier", "ellipseMinTraced",
+                           "ellipseMinArc", "ellipseRobustFit", "ellipseRobustIterations", "ellipseRobustMinTraced",
+                           "ellipseSpotTolerance", "ellipseRequireSpots"})
+    QVERIFY2(!find<QWidget>(w, name)->toolTip().isEmpty(), name);
 }
 
 void PanelTest::rethresholdPanel() {
