@@ -5,12 +5,10 @@
 #include <sys/resource.h>
 
 #include <opencv2/core/utility.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <random>
 #include <vector>
 
 #include "cli/allocation_counter.h"
@@ -19,8 +17,7 @@
 #include "cli/peers/apriltag_peer.h"
 #include "cli/peers/opencv_peer.h"
 #include "core/pipeline/engine.h"
-#include "core/source/virtual_motion.h"
-#include "core/source/virtual_renderer.h"
+#include "core/source/bench_scene.h"
 
 namespace imagepro::cli {
 namespace {
@@ -33,62 +30,18 @@ struct Sequence {
   std::vector<Frame> tag_frames;     // the same scenes with an AprilTag over the target
 };
 
-// The scene: the target swings sideways and turns in front of clutter, seen through
-// a camera whose field of view is the same at every resolution.
-Settings benchSettings(cv::Size size) {
-  Settings s;
-  const double scale = size.width / 640.0;
-  s.camera.width = size.width;
-  s.camera.height = size.height;
-  s.camera.pixel_size_mm = {0.01 / scale, 0.01 / scale};
-  s.camera.principal_point_px = {(size.width - 1) / 2.0, (size.height - 1) / 2.0};
-  VirtualSceneOptions& v = s.virtual_scene;
-  v.mode = RenderMode::Grey;
-  v.clutter = 8;
-  v.initial_pose = Pose{20.0, -25.0, 30.0, 0.0, 0.0, 900.0};
-  v.motion.kind = MotionKind::Sinusoid;
-  v.motion.axis = PoseAxis::Tx;
-  v.motion.amplitude = 200.0;
-  v.motion.period_s = 4.0;
-  v.frame_rate_hz = 25.0;
-  return s;
-}
-
-// Blur and noise applied identically to both kinds of frame.
-void degrade(cv::Mat& image, double blur_sigma, double noise_sigma, unsigned seed) {
-  if (blur_sigma > 0) cv::GaussianBlur(image, image, {0, 0}, blur_sigma);
-  if (noise_sigma > 0) {
-    cv::Mat noise(image.size(), CV_16SC1);
-    cv::RNG rng(seed);
-    rng.fill(noise, cv::RNG::NORMAL, 0, noise_sigma);
-    cv::Mat sum;
-    image.convertTo(sum, CV_16SC1);
-    sum += noise;
-    sum.convertTo(image, CV_8UC1);
-  }
-}
-
 Sequence makeSequence(cv::Size size, int frames) {
   Sequence seq;
-  seq.settings = benchSettings(size);
+  seq.settings = benchSceneSettings(size);
   const Settings& s = seq.settings;
-  VirtualSceneOptions clean = s.virtual_scene;
-  clean.noise_sigma = 0;
-  clean.blur_sigma_px = 0;
   AprilTagPeer tags(s.camera, 2.0 * s.target.radius_mm);
   for (int i = 0; i < frames; ++i) {
-    const double t = i / s.virtual_scene.frame_rate_hz;
-    const Pose pose = virtualPoseAt(s.virtual_scene, t);
-    Frame f;
-    f.index = i;
-    f.timestamp_s = t;
-    f.truth = pose;
-    renderTarget(s.camera, s.target, clean, pose, f.image, static_cast<std::uint64_t>(i));
+    Frame f = renderCleanBenchFrame(s, i);
     Frame g = f;
     g.image = f.image.clone();
-    tags.drawTag(pose, g.image);
-    degrade(f.image, 0.8, 3.0, static_cast<unsigned>(i));
-    degrade(g.image, 0.8, 3.0, static_cast<unsigned>(i));
+    tags.drawTag(*f.truth, g.image);
+    degradeBenchFrame(f.image, kBenchBlurSigmaPx, kBenchNoiseSigma, static_cast<unsigned>(i));
+    degradeBenchFrame(g.image, kBenchBlurSigmaPx, kBenchNoiseSigma, static_cast<unsigned>(i));
     seq.target_frames.push_back(std::move(f));
     seq.tag_frames.push_back(std::move(g));
   }
