@@ -180,6 +180,9 @@ void Worker::doStop() {
   timer_->stop();
   if (kind_ == SourceKind::Camera) source_.reset();  // frees the device for other programs
   setRunning(false);
+  // Frames processed while the GUI drew the previous packet are sent now (or, if it is
+  // still drawing, when it is done: markDisplayed), so their history reaches the window.
+  if (display_dirty_) publish();
 }
 
 void Worker::doSetDataOut(const QString& path, ExistingFile existing, bool replace) {

@@ -363,7 +363,8 @@ void AnalysisWindowTest::livePendulumIsCollected() {
   QTRY_VERIFY_WITH_TIMEOUT(w.collectedFrames() >= 300, 60000);
   main_->stopSource();
   QTRY_VERIFY_WITH_TIMEOUT(!main_->worker()->isRunning(), 5000);
-  QTest::qWait(100);  // the last packet
+  // The last poses are still queued to the GUI thread when the worker stops: wait for them.
+  QTRY_COMPARE_WITH_TIMEOUT(w.collectedFrames(), main_->worker()->framesProcessed(), 5000);
   QVERIFY(runAndWait(w));  // stop collecting: analysed on the background thread
   QVERIFY(!w.isCollecting());
   const PendulumStudyResult& r = w.pendulumResult();
