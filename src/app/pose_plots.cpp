@@ -98,10 +98,18 @@ PosePlots::PosePlots(QWidget* parent) : QWidget(parent), pause_(new QPushButton(
   });
   connect(clear_button, &QPushButton::clicked, this, &PosePlots::clear);
   connect(export_button, &QPushButton::clicked, this, &PosePlots::exportInteractive);
+  // One plot per tick, a round of six every kRedrawMs: redrawing all six at once held the
+  // GUI thread for about 40 ms, long enough to feel as a stall.
   connect(redraw_timer_, &QTimer::timeout, this, [this] {
-    if (dirty_ && !isPaused() && isVisible()) redraw();
+    if (isPaused() || !isVisible()) return;
+    if (next_plot_ == 0) {
+      if (!dirty_) return;
+      dirty_ = false;
+    }
+    redrawPlot(next_plot_, shownRange());
+    next_plot_ = (next_plot_ + 1) % static_cast<int>(plots_.size());
   });
-  redraw_timer_->start(kRedrawMs);  // at most five redraws a second, whatever the frame rate
+  redraw_timer_->start(kRedrawMs / static_cast<int>(plots_.size()));  // at most five rounds a second
 }
 
 bool PosePlots::isPaused() const { return pause_->isChecked(); }
@@ -122,48 +130,58 @@ void PosePlots::clear() {
   redraw();
 }
 
+PosePlots::ShownRange PosePlots::shownRange() const {
+  ShownRange r;
+  r.first = recorded_.size() > kShown ? recorded_.size() - kShown : 0;
+  // Files carry no capture times: their samples are placed by frame number instead.
+  for (std::size_t k = r.first; k < recorded_.size() && !r.timed; ++k)
+    r.timed = recorded_[k].timestamp_s != recorded_[r.first].timestamp_s;
+  const auto x_of = [&r](const PoseSample& s) { return r.timed ? s.timestamp_s : static_cast<double>(s.index); };
+  r.x0 = r.first < recorded_.size() ? x_of(recorded_[r.first]) : 0.0;
+  r.x1 = recorded_.empty() ? 1.0 : x_of(recorded_.back());
+  r.few = recorded_.size() - r.first < 30;
+  return r;
+}
+
 void PosePlots::redraw() {
   dirty_ = false;
-  const std::size_t first = recorded_.size() > kShown ? recorded_.size() - kShown : 0;
-  // Files carry no capture times: their samples are placed by frame number instead.
-  bool timed = false;
-  for (std::size_t k = first; k < recorded_.size() && !timed; ++k) timed = recorded_[k].timestamp_s != recorded_[first].timestamp_s;
-  const auto x_of = [timed](const PoseSample& s) { return timed ? s.timestamp_s : static_cast<double>(s.index); };
-  const double x0 = first < recorded_.size() ? x_of(recorded_[first]) : 0.0;
-  const double x1 = recorded_.empty() ? 1.0 : x_of(recorded_.back());
-  const bool few = recorded_.size() - first < 30;
-  for (int i = 0; i < 6; ++i) {
-    Plot& p = plots_[static_cast<std::size_t>(i)];
-    QList<QPointF> measured, truth;
-    measured.reserve(static_cast<qsizetype>(recorded_.size() - first));
-    double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
-    for (std::size_t k = first; k < recorded_.size(); ++k) {
-      const PoseSample& s = recorded_[k];
-      if (s.pose) {
-        const double v = component(*s.pose, i);
-        measured.append({x_of(s), v});
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-      }
-      if (s.truth) {
-        const double v = component(*s.truth, i);
-        truth.append({x_of(s), v});
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-      }
+  next_plot_ = 0;
+  const ShownRange range = shownRange();
+  for (int i = 0; i < static_cast<int>(plots_.size()); ++i) redrawPlot(i, range);
+}
+
+void PosePlots::redrawPlot(int i, const ShownRange& r) {
+  const auto x_of = [&r](const PoseSample& s) { return r.timed ? s.timestamp_s : static_cast<double>(s.index); };
+  Plot& p = plots_[static_cast<std::size_t>(i)];
+  QList<QPointF> measured, truth;
+  measured.reserve(static_cast<qsizetype>(recorded_.size() - r.first));
+  double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
+  for (std::size_t k = r.first; k < recorded_.size(); ++k) {
+    const PoseSample& s = recorded_[k];
+    if (s.pose) {
+      const double v = component(*s.pose, i);
+      measured.append({x_of(s), v});
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
     }
-    p.measured->replace(measured);
-    p.truth->replace(truth);
-    p.measured->setPointsVisible(few);  // a lone file's pose is a point, not a line
-    if (lo > hi) {
-      lo = -1.0;
-      hi = 1.0;
+    if (s.truth) {
+      const double v = component(*s.truth, i);
+      truth.append({x_of(s), v});
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
     }
-    const double pad = std::max(0.5, 0.08 * (hi - lo));
-    p.y->setRange(lo - pad, hi + pad);
-    p.x->setRange(x0 - (timed ? 0.0 : 0.5), std::max(x1, x0 + 1.0) + (timed ? 0.0 : 0.5));
-    p.x->setLabelFormat(timed ? QStringLiteral("%.0f s") : QStringLiteral("#%.0f"));
   }
+  p.measured->replace(measured);
+  p.truth->replace(truth);
+  p.measured->setPointsVisible(r.few);  // a lone file's pose is a point, not a line
+  if (lo > hi) {
+    lo = -1.0;
+    hi = 1.0;
+  }
+  const double pad = std::max(0.5, 0.08 * (hi - lo));
+  p.y->setRange(lo - pad, hi + pad);
+  p.x->setRange(r.x0 - (r.timed ? 0.0 : 0.5), std::max(r.x1, r.x0 + 1.0) + (r.timed ? 0.0 : 0.5));
+  p.x->setLabelFormat(r.timed ? QStringLiteral("%.0f s") : QStringLiteral("#%.0f"));
 }
 
 bool PosePlots::exportCsv(const QString& path, QString& error) const {

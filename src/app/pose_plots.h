@@ -36,7 +36,16 @@ class PosePlots : public QWidget {
   void error(const QString& text);
 
  private:
-  void redraw();
+  // The recorded samples on screen: the last kShown, placed by time or frame number.
+  struct ShownRange {
+    std::size_t first = 0;
+    bool timed = false;
+    double x0 = 0.0, x1 = 1.0;
+    bool few = true;
+  };
+  ShownRange shownRange() const;
+  void redraw();  // every plot at once
+  void redrawPlot(int i, const ShownRange& range);
   void exportInteractive();
 
   struct Plot {
@@ -51,6 +60,7 @@ class PosePlots : public QWidget {
   QPushButton* pause_;
   QTimer* redraw_timer_;
   bool dirty_ = false;
+  int next_plot_ = 0;  // the timer redraws one plot per tick
 };
 
 }  // namespace imagepro::app

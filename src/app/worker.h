@@ -111,6 +111,7 @@ class Worker : public QObject {
 
   std::vector<PoseSample> history_;
   bool display_dirty_ = false;
+  std::chrono::steady_clock::time_point last_publish_{};
 
   std::atomic<bool> running_{false};
   std::atomic<bool> packet_in_flight_{false};
