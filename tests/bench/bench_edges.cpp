@@ -21,7 +21,6 @@ namespace imagepro {
 namespace {
 
 constexpr int kFrames = bench::kTableFrames;
-constexpr int kAllFrames = -1;
 
 struct TestFrames {
   std::vector<cv::Mat> binary;
@@ -46,18 +45,11 @@ const TestFrames& frames() {
   return f;
 }
 
-// Runs `step(frame)` on one frame (range(0) >= 0) or on all frames in turn.
+// The table frames in turn (bench_frames.h), with this stage's counters for one frame.
 template <class Step>
 void runFrames(benchmark::State& state, Step step) {
-  const int only = static_cast<int>(state.range(0));
-  int i = 0;
-  for (auto _ : state) {
-    step(only == kAllFrames ? i : only);
-    i = (i + 1) % kFrames;
-  }
-  state.counters["per_frame"] =
-      benchmark::Counter(1.0, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-  if (only != kAllFrames) {
+  const int only = bench::runTableFrames(state, step);
+  if (only != bench::kAllTableFrames) {
     state.counters["edge_pixels"] = static_cast<double>(frames().laplace[static_cast<std::size_t>(only)].size());
   }
 }
@@ -124,19 +116,12 @@ void OpenCvFindContours(benchmark::State& state) {
   });
 }
 
-void frameArgs(benchmark::internal::Benchmark* b) {
-  for (int i = 0; i < kFrames; ++i) b->Arg(i);
-  b->Arg(kAllFrames);
-  b->ArgName("frame");
-  b->Unit(benchmark::kMicrosecond);
-}
-
-BENCHMARK(SobelThinning)->Apply(frameArgs);
-BENCHMARK(Laplace)->Apply(frameArgs);
-BENCHMARK(CN0)->Apply(frameArgs);
-BENCHMARK(CN1)->Apply(frameArgs);
-BENCHMARK(LaplaceThenCN1)->Apply(frameArgs);
-BENCHMARK(OpenCvFindContours)->Apply(frameArgs);
+BENCHMARK(SobelThinning)->Apply(bench::tableFrameArgs);
+BENCHMARK(Laplace)->Apply(bench::tableFrameArgs);
+BENCHMARK(CN0)->Apply(bench::tableFrameArgs);
+BENCHMARK(CN1)->Apply(bench::tableFrameArgs);
+BENCHMARK(LaplaceThenCN1)->Apply(bench::tableFrameArgs);
+BENCHMARK(OpenCvFindContours)->Apply(bench::tableFrameArgs);
 
 }  // namespace
 }  // namespace imagepro

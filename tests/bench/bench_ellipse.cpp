@@ -23,7 +23,6 @@ namespace imagepro {
 namespace {
 
 constexpr int kFrames = bench::kTableFrames;
-constexpr int kAllFrames = -1;
 const cv::Size kImage(640, 480);
 
 const std::vector<Paths>& frames() {
@@ -52,17 +51,11 @@ std::size_t fittedPaths(const Paths& p) {
   return n;
 }
 
+// The table frames in turn (bench_frames.h), with this stage's counters for one frame.
 template <class Step>
 void runFrames(benchmark::State& state, Step step) {
-  const int only = static_cast<int>(state.range(0));
-  int i = 0;
-  for (auto _ : state) {
-    step(only == kAllFrames ? i : only);
-    i = (i + 1) % kFrames;
-  }
-  state.counters["per_frame"] =
-      benchmark::Counter(1.0, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-  if (only != kAllFrames) {
+  const int only = bench::runTableFrames(state, step);
+  if (only != bench::kAllTableFrames) {
     const Paths& p = frames()[static_cast<std::size_t>(only)];
     state.counters["edge_pixels"] = static_cast<double>(p.pixels.size());
     state.counters["paths"] = static_cast<double>(p.pathCount());
@@ -139,19 +132,12 @@ void OpenCvFitEllipseDirect(benchmark::State& state) {
   });
 }
 
-void frameArgs(benchmark::internal::Benchmark* b) {
-  for (int i = 0; i < kFrames; ++i) b->Arg(i);
-  b->Arg(kAllFrames);
-  b->ArgName("frame");
-  b->Unit(benchmark::kMicrosecond);
-}
-
-BENCHMARK(DirectFitStage)->Apply(frameArgs);
-BENCHMARK(BennettStage)->Apply(frameArgs);
-BENCHMARK(DirectFitEveryPath)->Apply(frameArgs);
-BENCHMARK(BennettEveryPath)->Apply(frameArgs);
-BENCHMARK(FitOnly)->Apply(frameArgs);
-BENCHMARK(OpenCvFitEllipseDirect)->Apply(frameArgs);
+BENCHMARK(DirectFitStage)->Apply(bench::tableFrameArgs);
+BENCHMARK(BennettStage)->Apply(bench::tableFrameArgs);
+BENCHMARK(DirectFitEveryPath)->Apply(bench::tableFrameArgs);
+BENCHMARK(BennettEveryPath)->Apply(bench::tableFrameArgs);
+BENCHMARK(FitOnly)->Apply(bench::tableFrameArgs);
+BENCHMARK(OpenCvFitEllipseDirect)->Apply(bench::tableFrameArgs);
 
 }  // namespace
 }  // namespace imagepro

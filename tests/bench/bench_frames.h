@@ -4,6 +4,8 @@
 // rectangles, with noise, blur and uneven lighting, binarized by AT-Mod (eq. 2.1) as
 // the pipeline does. Each benchmark keeps its own scene style so its figures stay
 // comparable with the ones recorded in docs/benchmarks.md.
+#include <benchmark/benchmark.h>
+
 #include <opencv2/core.hpp>
 
 #include "core/segmentation/histogram.h"
@@ -13,6 +15,30 @@
 namespace imagepro::bench {
 
 inline constexpr int kTableFrames = 10;
+inline constexpr int kAllTableFrames = -1;  // the benchmark argument that cycles through them all
+
+// Frames 0..9 one by one, then all ten in turn (frame:-1), in microseconds.
+inline void tableFrameArgs(benchmark::internal::Benchmark* b) {
+  for (int i = 0; i < kTableFrames; ++i) b->Arg(i);
+  b->Arg(kAllTableFrames);
+  b->ArgName("frame");
+  b->Unit(benchmark::kMicrosecond);
+}
+
+// Runs `step(frame)` on the benchmark's frame, or on every frame in turn, and adds the
+// mean time per frame as the counter per_frame. Returns the frame (kAllTableFrames: all).
+template <class Step>
+int runTableFrames(benchmark::State& state, Step step) {
+  const int only = static_cast<int>(state.range(0));
+  int i = 0;
+  for (auto _ : state) {
+    step(only == kAllTableFrames ? i : only);
+    i = (i + 1) % kTableFrames;
+  }
+  state.counters["per_frame"] =
+      benchmark::Counter(1.0, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  return only;
+}
 
 // How the scene of frame i varies with i.
 struct ClutterStyle {
