@@ -17,6 +17,7 @@ function(imagepro_test name)
   cmake_parse_arguments(T "" "" "SOURCES;DEPS" ${ARGN})
   add_executable(test_${name} ${T_SOURCES})
   target_link_libraries(test_${name} PRIVATE ${T_DEPS} GTest::gtest GTest::gtest_main)
+  target_include_directories(test_${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)  # support/
   target_compile_definitions(test_${name} PRIVATE
     IMAGEPRO_DATA_DIR="${IMAGEPRO_DATA_DIR}"
     IMAGEPRO_TEST_TMP="${CMAKE_BINARY_DIR}/test-tmp")

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/common/atomic_file.h"
+#include "support/test_dirs.h"
 
 namespace imagepro {
 namespace {
@@ -41,12 +42,7 @@ CliRun cli(const std::string& args) {
   return r;
 }
 
-fs::path freshDir(const char* name) {
-  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using test::freshDir;
 
 std::vector<std::string> lines(const std::string& text) {
   std::vector<std::string> out;

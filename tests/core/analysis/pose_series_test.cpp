@@ -7,18 +7,14 @@
 #include <fstream>
 
 #include "core/pipeline/data_out.h"
+#include "support/test_dirs.h"
 
 namespace imagepro {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path freshDir(const char* name) {
-  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using test::freshDir;
 
 void writeText(const fs::path& p, const std::string& text) {
   std::ofstream out(p);

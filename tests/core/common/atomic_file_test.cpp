@@ -3,18 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include "support/test_dirs.h"
 
 namespace imagepro {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path freshDir(const char* name) {
-  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using test::freshDir;
 
 TEST(AtomicFile, WritesAndReplaces) {
   const fs::path dir = freshDir("atomic_write");

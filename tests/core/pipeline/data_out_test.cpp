@@ -7,18 +7,14 @@
 #include <sstream>
 
 #include "core/common/atomic_file.h"
+#include "support/test_dirs.h"
 
 namespace imagepro {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path freshDir(const char* name) {
-  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using test::freshDir;
 
 std::string slurp(const fs::path& p) {
   std::string s, err;

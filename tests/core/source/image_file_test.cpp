@@ -8,18 +8,14 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include "support/test_dirs.h"
 
 namespace imagepro {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / "source" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch(const std::string& name) { return test::freshDir("source/" + name); }
 
 cv::Mat testPattern(int type) {
   cv::Mat img(48, 64, type);
