@@ -186,6 +186,36 @@ struct EdgeLevels {
   double minContrast() const { return kMinSubPixelContrastFraction * std::max(contrast(), 1.0); }
 };
 
+// The pixels of a line within kReach of pixel c, read once as integers: the crossing's
+// estimates below touch them several times.
+struct LineWindow {
+  static constexpr int kReach = 7;
+  int first = 0, last = -1;  // the line coordinates held, c - kReach .. c + kReach
+  std::array<int, 2 * kReach + 1> g{};
+
+  bool load(const PixelLine& line, int c) {
+    if (!line.contains(c - kReach) || !line.contains(c + kReach)) return false;
+    first = c - kReach;
+    last = c + kReach;
+    const std::uint8_t* p = line.data + (first - line.first) * line.stride;
+    if (line.stride == 1) {
+      for (int i = 0; i <= 2 * kReach; ++i) g[i] = p[i];  // a row: one contiguous read
+    } else {
+      for (int i = 0; i <= 2 * kReach; ++i, p += line.stride) g[i] = *p;
+    }
+    return true;
+  }
+  bool contains(int k) const { return k >= first && k <= last; }
+  int at(int k) const { return g[k - first]; }
+  bool interp(double x, double& value) const {
+    const int k = floorToInt(x);
+    if (k < first || k + 1 > last) return false;
+    const double f = x - k;
+    value = (1.0 - f) * at(k) + f * at(k + 1);
+    return true;
+  }
+};
+
 // The edge's position from the area under the profile: over pixels a..b straddling the edge,
 // each pixel's grey level, scaled between the two plateaus, is the white fraction of its
 // length, so the white run's length fixes the edge. Exact for a straight edge under any
@@ -194,8 +224,7 @@ struct EdgeLevels {
 // `roomPx` is the smaller of the line's run inside the rim and the rim's radius of
 // curvature there: on a target seen very obliquely the window would hold the far rim or a
 // strongly curved edge, and the linear crossing is kept.
-template <typename Line>
-bool areaCrossing(const Line& line, int in, const EdgeLevels& levels, double roomPx, double& x0) {
+bool areaCrossing(const LineWindow& line, int in, const EdgeLevels& levels, double roomPx, double& x0) {
   constexpr int kHalfWindow = 4;  // pixels either side of the crossing
   constexpr double kPlateauTolerance = 0.15;  // of the contrast: the window's ends are on the plateaus
   constexpr double kClassTolerance = 0.3;     // of the crop's contrast: plateaus near its class means
@@ -203,11 +232,13 @@ bool areaCrossing(const Line& line, int in, const EdgeLevels& levels, double roo
   const int c = roundToInt(x0);
   const int a = c - kHalfWindow, b = c + kHalfWindow;
   if (!line.contains(a - 2) || !line.contains(b + 2)) return false;
-  // Plateaus just beyond the window; `lo` and `hi` are the window's ends on the outer and
+  // Plateaus just beyond the window, as sums of their two pixels (integers, so the tests on
+  // the mid-level below are exact); `lo` and `hi` are the window's ends on the outer and
   // inner side.
   const int lo = in > 0 ? a : b, hi = in > 0 ? b : a;
-  const double outside = 0.5 * (line.at(lo - in) + line.at(lo - 2 * in));
-  const double inside = 0.5 * (line.at(hi + in) + line.at(hi + 2 * in));
+  const int outside2 = line.at(lo - in) + line.at(lo - 2 * in);
+  const int inside2 = line.at(hi + in) + line.at(hi + 2 * in);
+  const double outside = 0.5 * outside2, inside = 0.5 * inside2;
   const double contrast = inside - outside;
   if (!(contrast >= levels.minContrast())) return false;
   // The plateaus must be the rim's own white and the card's black, not the scene beyond a
@@ -220,17 +251,18 @@ bool areaCrossing(const Line& line, int in, const EdgeLevels& levels, double roo
     return false;
   // One clean edge: white more than 1.5 px on its inner side, black more than 1.5 px on its
   // outer side, nothing else (a spot, or the far rim of a target seen obliquely) in the window.
-  const double mid = outside + 0.5 * contrast;
-  const int innerFrom = in > 0 ? floorToInt(x0 + 1.5) + 1 : a;
-  const int innerTo = in > 0 ? b : ceilToInt(x0 - 1.5) - 1;
-  const int outerFrom = in > 0 ? a : floorToInt(x0 + 1.5) + 1;
-  const int outerTo = in > 0 ? ceilToInt(x0 - 1.5) - 1 : b;
-  double sum = 0.0;
-  for (int k = a; k <= b; ++k) {
-    const double g = line.at(k);
-    if ((k >= innerFrom && k <= innerTo && g < mid) || (k >= outerFrom && k <= outerTo && g > mid)) return false;
-    sum += g;
-  }
+  // A pixel g is below the mid-level (outside + inside) / 2 exactly when 4 g < mid4.
+  const int mid4 = outside2 + inside2;
+  const int innerFrom = std::max(a, in > 0 ? floorToInt(x0 + 1.5) + 1 : a);
+  const int innerTo = std::min(b, in > 0 ? b : ceilToInt(x0 - 1.5) - 1);
+  const int outerFrom = std::max(a, in > 0 ? a : floorToInt(x0 + 1.5) + 1);
+  const int outerTo = std::min(b, in > 0 ? ceilToInt(x0 - 1.5) - 1 : b);
+  for (int k = innerFrom; k <= innerTo; ++k)
+    if (4 * line.at(k) < mid4) return false;
+  for (int k = outerFrom; k <= outerTo; ++k)
+    if (4 * line.at(k) > mid4) return false;
+  int sum = 0;
+  for (int k = a; k <= b; ++k) sum += line.at(k);
   const double white = (sum - (b - a + 1) * outside) / contrast;
   const double edge = in > 0 ? b + 0.5 - white : a - 0.5 + white;
   if (!(std::abs(edge - x0) < 1.5)) return false;  // the window did not hold one clean edge
@@ -240,8 +272,7 @@ bool areaCrossing(const Line& line, int in, const EdgeLevels& levels, double roo
 
 // The crossing nearest x0 of the grey level with the mean of the two plateaus sampled 2.5
 // and 3.5 px either side of x0, the profile interpolated linearly between pixels.
-template <typename Line>
-bool linearCrossing(const Line& line, int in, const EdgeLevels& levels, double& x0) {
+bool linearCrossing(const LineWindow& line, int in, const EdgeLevels& levels, double& x0) {
   constexpr int kSearchPx = 3;
   double o1, o2, i1, i2;
   if (!line.interp(x0 - in * 2.5, o1) || !line.interp(x0 - in * 3.5, o2) ||
@@ -264,32 +295,6 @@ bool linearCrossing(const Line& line, int in, const EdgeLevels& levels, double& 
   if (found) x0 = best;
   return found;
 }
-
-// The pixels of a line within kReach of pixel c, read once: the crossing's estimates below
-// touch them several times.
-struct LineWindow {
-  static constexpr int kReach = 7;
-  int first = 0, last = -1;  // the line coordinates held, c - kReach .. c + kReach
-  std::array<double, 2 * kReach + 1> g{};
-
-  bool load(const PixelLine& line, int c) {
-    if (!line.contains(c - kReach) || !line.contains(c + kReach)) return false;
-    first = c - kReach;
-    last = c + kReach;
-    const std::uint8_t* p = line.data + (first - line.first) * line.stride;
-    for (int i = 0; i <= 2 * kReach; ++i, p += line.stride) g[i] = *p;
-    return true;
-  }
-  bool contains(int k) const { return k >= first && k <= last; }
-  double at(int k) const { return g[k - first]; }
-  bool interp(double x, double& value) const {
-    const int k = floorToInt(x);
-    if (k < first || k + 1 > last) return false;
-    const double f = x - k;
-    value = (1.0 - f) * at(k) + f * at(k + 1);
-    return true;
-  }
-};
 
 // A rim crossing near x0 on a grey line, `in` (+1 or -1) pointing towards white: the area
 // estimate when its window holds one clean edge (once more if it moved the window's
