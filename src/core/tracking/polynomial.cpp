@@ -28,7 +28,7 @@ Extrapolation extrapolatePolynomial(std::span<const double> t, std::span<const d
     for (int j = 0; j <= m; ++j, p *= s) A(i, j) = p;
     b(i) = x[start + i];
   }
-  const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 4, 1> c = A.colPivHouseholderQr().solve(b);
+  const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 4, 1> c = A.householderQr().solve(b);
 
   const double sn = (t_next - t0) / span;
   double p = 1.0;
