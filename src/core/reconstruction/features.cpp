@@ -230,14 +230,14 @@ bool areaCrossing(const LineWindow& line, int in, const EdgeLevels& levels, doub
   constexpr double kClassTolerance = 0.3;     // of the crop's contrast: plateaus near its class means
   if (roomPx < 3 * (kHalfWindow + 2)) return false;
   const int c = roundToInt(x0);
-  const int a = c - kHalfWindow, b = c + kHalfWindow;
-  if (!line.contains(a - 2) || !line.contains(b + 2)) return false;
+  if (!line.contains(c - kHalfWindow - 2) || !line.contains(c + kHalfWindow + 2)) return false;
+  // px(j): the pixel j steps inwards from c, whichever way the line runs.
+  const int* centre = line.g.data() + (c - line.first);
+  auto px = [&](int j) { return centre[j * in]; };
   // Plateaus just beyond the window, as sums of their two pixels (integers, so the tests on
-  // the mid-level below are exact); `lo` and `hi` are the window's ends on the outer and
-  // inner side.
-  const int lo = in > 0 ? a : b, hi = in > 0 ? b : a;
-  const int outside2 = line.at(lo - in) + line.at(lo - 2 * in);
-  const int inside2 = line.at(hi + in) + line.at(hi + 2 * in);
+  // the mid-level below are exact).
+  const int outside2 = px(-kHalfWindow - 1) + px(-kHalfWindow - 2);
+  const int inside2 = px(kHalfWindow + 1) + px(kHalfWindow + 2);
   const double outside = 0.5 * outside2, inside = 0.5 * inside2;
   const double contrast = inside - outside;
   if (!(contrast >= levels.minContrast())) return false;
@@ -247,24 +247,21 @@ bool areaCrossing(const LineWindow& line, int in, const EdgeLevels& levels, doub
   if (std::abs(outside - levels.dark) > classTolerance || std::abs(inside - levels.bright) > classTolerance)
     return false;
   const double plateauTolerance = kPlateauTolerance * contrast;
-  if (std::abs(line.at(lo) - outside) > plateauTolerance || std::abs(line.at(hi) - inside) > plateauTolerance)
+  if (std::abs(px(-kHalfWindow) - outside) > plateauTolerance || std::abs(px(kHalfWindow) - inside) > plateauTolerance)
     return false;
   // One clean edge: white more than 1.5 px on its inner side, black more than 1.5 px on its
   // outer side, nothing else (a spot, or the far rim of a target seen obliquely) in the window.
   // A pixel g is below the mid-level (outside + inside) / 2 exactly when 4 g < mid4.
   const int mid4 = outside2 + inside2;
-  const int innerFrom = std::max(a, in > 0 ? floorToInt(x0 + 1.5) + 1 : a);
-  const int innerTo = std::min(b, in > 0 ? b : ceilToInt(x0 - 1.5) - 1);
-  const int outerFrom = std::max(a, in > 0 ? a : floorToInt(x0 + 1.5) + 1);
-  const int outerTo = std::min(b, in > 0 ? ceilToInt(x0 - 1.5) - 1 : b);
-  for (int k = innerFrom; k <= innerTo; ++k)
-    if (4 * line.at(k) < mid4) return false;
-  for (int k = outerFrom; k <= outerTo; ++k)
-    if (4 * line.at(k) > mid4) return false;
+  const double u = (x0 - c) * in;  // x0 inwards of c, within half a pixel
+  for (int j = floorToInt(u + 1.5) + 1; j <= kHalfWindow; ++j)
+    if (4 * px(j) < mid4) return false;
+  for (int j = -kHalfWindow; j <= -floorToInt(1.5 - u) - 1; ++j)
+    if (4 * px(j) > mid4) return false;
   int sum = 0;
-  for (int k = a; k <= b; ++k) sum += line.at(k);
-  const double white = (sum - (b - a + 1) * outside) / contrast;
-  const double edge = in > 0 ? b + 0.5 - white : a - 0.5 + white;
+  for (int j = -kHalfWindow; j <= kHalfWindow; ++j) sum += centre[j];
+  const double white = (sum - (2 * kHalfWindow + 1) * outside) / contrast;
+  const double edge = in > 0 ? c + (kHalfWindow + 0.5) - white : c - (kHalfWindow + 0.5) + white;
   if (!(std::abs(edge - x0) < 1.5)) return false;  // the window did not hold one clean edge
   x0 = edge;
   return true;
