@@ -31,9 +31,11 @@ namespace imagepro {
 // O(256^2).
 Status thresholdAtOrig(const Histogram& h, int& t);
 
-// AT-Mod: the same criterion with the moment vectors F(g) = g h(g), S(g) = g F(g)
-// (eqs. 2.16-2.17) built once and the class sums carried from t to t+1
-// (eqs. 2.12-2.15). O(256).
+// AT-Mod: the same criterion with each class's sums carried from t to t+1
+// (eqs. 2.12-2.17) instead of recomputed. O(256). J(t) is first evaluated for every t
+// in single precision, with a proven error bound; only the t whose J can still be the
+// smallest are then evaluated by the shared expression in double, so the threshold is
+// the one that evaluating every t in double gives.
 Status thresholdAtMod(const Histogram& h, int& t);
 
 // The threshold the options ask for: Manual gives o.manual_value (InvalidSettings

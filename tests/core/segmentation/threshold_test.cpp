@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <random>
+#include <string>
 
 namespace imagepro {
 namespace {
@@ -43,8 +44,67 @@ std::optional<long double> referenceJ(const Histogram& h, int t) {
          c2.count * std::log(c2.variance / (c2.count * c2.count));
 }
 
-// Both variants agree, and where J is defined anywhere the threshold minimises it.
+// --- the same criterion as both variants evaluate it, from scratch ----------------------
+
+// For every t, each class's count P, sum g h and sum g^2 h summed afresh, its scatter
+// P^2 sigma^2 = P sum g^2 h - (sum g h)^2 exact, and eq. 2.4 in double as
+// P ln(P^2 sigma^2 / P^4) per class. The smallest J wins, the smallest t on a tie;
+// where no t has both classes of non-zero variance, the widest gap between populated
+// levels (the first on a tie). 2^32 pixels or more: undefined.
+struct Expected {
+  Status status = Status::ThresholdUndefined;
+  int t = -1;
+};
+
+Expected doubleEvaluation(const Histogram& h) {
+  std::int64_t pixels = 0;
+  for (const auto n : h) pixels += n;
+  if (pixels >= (std::int64_t{1} << 32)) return {};
+  const auto term = [&h](int a, int b) -> std::optional<double> {
+    std::int64_t count = 0, first = 0, second = 0;
+    for (int g = a; g <= b; ++g) {
+      count += h[g];
+      first += std::int64_t{g} * h[g];
+      second += std::int64_t{g} * g * h[g];
+    }
+    const __int128 scatter = __int128{count} * second - __int128{first} * first;
+    if (count == 0 || scatter <= 0) return std::nullopt;
+    const double p = static_cast<double>(count);
+    return p * std::log(static_cast<double>(scatter) / (p * p * p * p));
+  };
+  Expected e;
+  double best = 0.0;
+  for (int t = 0; t < 255; ++t) {
+    const auto j1 = term(0, t), j2 = term(t + 1, 255);
+    if (j1 && j2 && (e.t < 0 || *j1 + *j2 < best)) {
+      e = {Status::Ok, t};
+      best = *j1 + *j2;
+    }
+  }
+  if (e.t >= 0) return e;
+  int widest = 0;
+  for (int a = 0, b = 1; b < 256; ++b) {
+    if (h[b] == 0) continue;
+    if (h[a] != 0 && b - a > widest) {
+      widest = b - a;
+      e = {Status::Ok, a};
+    }
+    a = b;
+  }
+  return e;
+}
+
+void expectTheDoubleEvaluation(const Histogram& h, const std::string& what) {
+  const Expected expected = doubleEvaluation(h);
+  int t = -7;
+  ASSERT_EQ(thresholdAtMod(h, t), expected.status) << what;
+  EXPECT_EQ(t, ok(expected.status) ? expected.t : -7) << what;
+}
+
+// AT-Mod gives the threshold of the double evaluation, both variants agree, and where J
+// is defined anywhere the threshold minimises it.
 void expectBothAgreeAndMinimise(const Histogram& h, const std::string& what) {
+  expectTheDoubleEvaluation(h, what);
   int t_orig = -7, t_mod = -7;
   const Status s_orig = thresholdAtOrig(h, t_orig);
   const Status s_mod = thresholdAtMod(h, t_mod);
@@ -152,6 +212,119 @@ TEST(Threshold, VariantsAgreeAtTheLimitOfExactArithmetic) {
   EXPECT_EQ(thresholdAtOrig(h, t), Status::ThresholdUndefined);
   EXPECT_EQ(thresholdAtMod(h, t), Status::ThresholdUndefined);
   EXPECT_EQ(t, -7);
+}
+
+// --- AT-Mod is the double evaluation on histograms made to test it --------------------
+
+// A mirror-symmetric histogram, h(g) = h(255 - g), gives J(t) = J(254 - t) to the last
+// bit (the two class terms swap), so each t has an exact twin; a few pixels moved make
+// the twins differ by less than the single-precision pass can tell apart.
+TEST(ThresholdAtMod, IsTheDoubleEvaluationOnTiesAndNearTies) {
+  std::mt19937 rng(91);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::uniform_int_distribution<int> level(0, 255), nudge(1, 3);
+  int twins = 0;
+  for (int i = 0; i < 1500; ++i) {
+    Histogram half;
+    switch (i % 3) {
+      case 0:  // two modes per side: three or four modes in all
+        half = mixture(20000 + 200000 * u(rng), 0.1 + 0.8 * u(rng), 10 + 60 * u(rng), 1 + 12 * u(rng),
+                       80 + 60 * u(rng), 1 + 12 * u(rng), &rng);
+        break;
+      case 1:  // flat, plus noise
+        for (auto& bin : half) bin = 50 + static_cast<std::uint32_t>(level(rng) % 7);
+        break;
+      default:  // sparse spikes
+        half.fill(0);
+        for (int k = 0; k < 6; ++k) half[level(rng)] = 1 + static_cast<std::uint32_t>(level(rng)) * 1000;
+    }
+    Histogram h;
+    for (int g = 0; g < 128; ++g) h[g] = h[255 - g] = half[g] + half[255 - g];
+    expectBothAgreeAndMinimise(h, "symmetric " + std::to_string(i));
+    int t = -1;
+    if (ok(thresholdAtMod(h, t)) && t < 127) ++twins;  // its twin 254 - t was not taken
+    for (int k = 1 + i % 3; k > 0; --k) {
+      const int g = level(rng);
+      h[g] += static_cast<std::uint32_t>(nudge(rng));
+      if (h[255 - g] > 3) h[255 - g] -= static_cast<std::uint32_t>(nudge(rng));
+    }
+    expectBothAgreeAndMinimise(h, "nearly symmetric " + std::to_string(i));
+  }
+  EXPECT_GT(twins, 1000);  // the tie rule was exercised (1427 of 1500 here), not only single minima
+}
+
+TEST(ThresholdAtMod, IsTheDoubleEvaluationOnFewPopulatedLevels) {
+  std::mt19937 rng(17);
+  std::uniform_int_distribution<int> level(0, 255), populated(1, 6);
+  std::uniform_int_distribution<std::uint32_t> small(1, 20), any(1, 0xFFFFFFFFu);
+  for (int i = 0; i < 3000; ++i) {
+    Histogram h{};
+    const int levels_wanted = populated(rng);
+    for (int k = 0; k < levels_wanted; ++k) {
+      const int g = i % 4 == 0 ? 100 + level(rng) % 4 : level(rng);  // neighbouring levels too
+      h[g] = i % 3 == 0 ? any(rng) >> (level(rng) % 32) : small(rng);
+      if (h[g] == 0) h[g] = 1;
+    }
+    expectTheDoubleEvaluation(h, "few levels " + std::to_string(i));
+  }
+  // All pixels in one bin, or all but one.
+  for (const std::uint32_t n : {1u, 2u, 1000u, (1u << 23) - 1, 1u << 23, 0xFFFFFFFFu}) {
+    for (const int g : {0, 1, 128, 254, 255}) {
+      Histogram h{};
+      h[g] = n;
+      expectTheDoubleEvaluation(h, "one bin of " + std::to_string(n));
+      h[g == 255 ? 0 : g + 1] = 1;
+      expectTheDoubleEvaluation(h, "one bin and one pixel, " + std::to_string(n));
+      h[g == 0 ? 255 : g - 1] = 1;
+      h[g < 128 ? 255 : 0] = 1;
+      expectTheDoubleEvaluation(h, "one bin and three pixels, " + std::to_string(n));
+    }
+  }
+}
+
+// 2^23 pixels is where AT-Mod leaves 64-bit integers for 128-bit ones.
+TEST(ThresholdAtMod, IsTheDoubleEvaluationOnEitherSideOfThe64BitLimit) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::uniform_int_distribution<int> level(0, 255);
+  constexpr std::int64_t kLimit = std::int64_t{1} << 23;
+  for (int i = 0; i < 200; ++i) {
+    const double mu1 = 10 + 100 * u(rng), mu2 = mu1 + 20 + (235 - mu1) * u(rng);
+    Histogram h = mixture(static_cast<double>(kLimit), 0.1 + 0.8 * u(rng), mu1, 1 + 20 * u(rng), mu2,
+                          1 + 20 * u(rng), &rng);
+    std::int64_t pixels = 0;
+    for (const auto n : h) pixels += n;
+    // Exactly kLimit - 1, kLimit and kLimit + 1 pixels, the difference in one busy bin.
+    const int busy = static_cast<int>(mu1);
+    for (const std::int64_t target : {kLimit - 1, kLimit, kLimit + 1}) {
+      Histogram exact = h;
+      exact[busy] = static_cast<std::uint32_t>(exact[busy] + (target - pixels));
+      expectBothAgreeAndMinimise(exact, std::to_string(target) + " pixels, " + std::to_string(i));
+    }
+  }
+  // Up to the limit of exact arithmetic, 2^32 pixels, with noise in every bin.
+  for (int i = 0; i < 300; ++i) {
+    Histogram h = mixture(1.0e7 + 4.2e9 * u(rng), 0.1 + 0.8 * u(rng), 20 + 80 * u(rng), 2 + 15 * u(rng),
+                          140 + 100 * u(rng), 2 + 15 * u(rng));
+    for (auto& bin : h) bin += static_cast<std::uint32_t>(level(rng));
+    expectTheDoubleEvaluation(h, "large " + std::to_string(i));
+  }
+}
+
+// The range of x = sigma^2 / P^2 at its ends: a class of one busy level and one pixel
+// beside it (the smallest variance for its size) and classes spread over 0..255.
+TEST(ThresholdAtMod, IsTheDoubleEvaluationAtExtremeVariances) {
+  for (const std::uint32_t busy : {2u, 1000u, (1u << 22), (1u << 23) - 8}) {
+    expectTheDoubleEvaluation(levels({{40, busy}, {41, 1}, {200, 1}, {201, 1}}), "tight dark class");
+    expectTheDoubleEvaluation(levels({{40, 1}, {41, 1}, {200, 1}, {201, busy}}), "tight bright class");
+    expectTheDoubleEvaluation(levels({{0, busy}, {1, 1}, {2, 1}, {254, 1}, {255, busy}}), "two spikes");
+    expectTheDoubleEvaluation(levels({{0, 1}, {127, busy}, {128, busy}, {255, 1}}), "wide tails");
+  }
+  Histogram h;
+  h.fill((1u << 23) / 256 - 1);  // flat, just under the limit
+  expectBothAgreeAndMinimise(h, "flat");
+  h.fill(1);
+  expectBothAgreeAndMinimise(h, "one pixel per level");
 }
 
 // --- the threshold separates the modes -----------------------------------------------
