@@ -29,7 +29,7 @@ struct Engine::Impl {
   Settings settings;
   RegionTracker tracker;
   Frame frame;
-  cv::Mat crop, binary;
+  cv::Mat binary;
   EdgeList edges;
   EdgeWorkspace edge_ws;
   Paths paths;
@@ -116,14 +116,10 @@ void Engine::Impl::run(FrameResult& out) {
   if (!stream) tracker.reset();
   out.search_region =
       stream ? tracker.estimate(o.tracking, settings.camera, settings.target, t, grey.size()).value_or(whole) : whole;
-  // The whole frame needs no copy: threshold it in place. A tracked region is copied
-  // into the engine's own buffer, never into the frame's (another view may share it).
-  const bool whole_frame = out.search_region == whole;
-  if (whole_frame)
-    computeHistogram(grey, out.histogram);
-  else
-    cropWithHistogram(grey, out.search_region, crop, out.histogram);
-  const cv::Mat& searched = whole_frame ? grey : crop;
+  // The searched region is a view into the frame, not a copy: it is counted here and
+  // binarized into the engine's own buffer (never the frame's: another view may share it).
+  const cv::Mat searched = grey(out.search_region & whole);
+  computeHistogram(searched, out.histogram);
   out.times[Stage::Crop] = microsecondsSince(start);
   if (!reached(o.level, ApplicationLevel::Threshold)) return;
 

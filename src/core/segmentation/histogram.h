@@ -1,6 +1,6 @@
 #pragma once
-// Grey-level histogram h(g) of thesis 2.3, built in the same pass that crops the
-// frame to the tracked region (thesis 5.2.2), so the threshold costs no extra pass.
+// Grey-level histogram h(g) of thesis 2.3. The engine counts the tracked region
+// (thesis 5.2.2) as a view into the frame, without copying it.
 #include <opencv2/core.hpp>
 
 #include <array>
@@ -10,11 +10,9 @@ namespace imagepro {
 
 using Histogram = std::array<std::uint32_t, 256>;
 
-// Histogram of the whole CV_8UC1 image (all zeros for an empty or non-CV_8UC1 image).
+// Histogram of a CV_8UC1 image, which may be a region view into a larger one
+// (grey(roi)); all zeros for an empty or non-CV_8UC1 image. The rows of a view are
+// fetched a few rows ahead of the count, as their cache lines are not consecutive.
 void computeHistogram(const cv::Mat& grey, Histogram& hist);
-// Copies grey(roi) into `crop` (reusing its buffer) and builds its histogram in the same pass.
-// The roi is clipped to the image; an empty result gives an empty crop and a zero histogram.
-// `crop` may be a view into a larger reused allocation (see image_buffer.h): index it by row.
-void cropWithHistogram(const cv::Mat& grey, cv::Rect roi, cv::Mat& crop, Histogram& hist);
 
 }  // namespace imagepro

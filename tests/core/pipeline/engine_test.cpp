@@ -214,5 +214,43 @@ TEST(Engine, TrackedRegionAlwaysHoldsTheTarget) {
   }
 }
 
+// A tracked region is read where it lies in the frame: its histogram and binary image
+// are those of the frame's pixels there, and the frame is never written.
+TEST(Engine, TrackedRegionIsReadInPlaceAndTheFrameStaysIntact) {
+  Settings s;
+  s.virtual_scene.mode = RenderMode::Grey;
+  s.virtual_scene.noise_sigma = 3.0;
+  s.virtual_scene.motion.kind = MotionKind::Sinusoid;
+  s.virtual_scene.motion.axis = PoseAxis::Tx;
+  s.virtual_scene.motion.amplitude = 100;
+  s.virtual_scene.motion.period_s = 2;
+  s.pipeline.tracking.mode = TrackingMode::Corners2D;
+  VirtualSource source(s);
+  Engine engine(s);
+  FrameResult r;
+  Frame frame;
+  int tracked = 0;
+  for (int i = 0; i < 40; ++i) {
+    ASSERT_EQ(source.next(frame), Status::Ok);
+    const cv::Mat before = frame.image.clone();
+    engine.process(frame, r);
+    ASSERT_EQ(r.status, Status::Ok) << "frame " << i << ": " << statusName(r.status);
+    EXPECT_EQ(cv::countNonZero(frame.image != before), 0) << "frame " << i;
+    const cv::Mat region = before(r.search_region);
+    Histogram expected{};
+    for (int y = 0; y < region.rows; ++y)
+      for (int x = 0; x < region.cols; ++x) ++expected[region.at<std::uint8_t>(y, x)];
+    EXPECT_EQ(r.histogram, expected) << "frame " << i;
+    cv::Mat expected_binary;
+    cv::threshold(region, expected_binary, r.threshold, 255, cv::THRESH_BINARY);
+    const cv::Mat& binary = engine.binaryImage();
+    ASSERT_EQ(binary.size(), region.size()) << "frame " << i;
+    EXPECT_EQ(cv::countNonZero(binary != expected_binary), 0) << "frame " << i;
+    EXPECT_NE(binary.datastart, frame.image.datastart);
+    if (r.search_region.area() < r.image_size.area()) ++tracked;
+  }
+  EXPECT_GE(tracked, 30);
+}
+
 }  // namespace
 }  // namespace imagepro
