@@ -29,20 +29,21 @@ inline std::size_t indexOffset(const EdgePixel& p, std::size_t stride) {
   return static_cast<std::size_t>(p.y + 1) * stride + static_cast<std::size_t>(p.x + 1);
 }
 
-// Bit j set when neighbour j (raster order, `offsets`) holds an edge pixel not yet in
-// a path: an entry >= 0, i.e. with its sign bit clear. The SSE2 form reads each of the
-// three rows as four entries (x - 1 .. x + 2), which the index image's spare column
-// keeps inside the buffer.
-inline std::uint32_t freshNeighbours(const std::int32_t* centre, const std::array<std::ptrdiff_t, 8>& offsets) {
+// The 3x3 neighbourhood in raster order: bit 3 * row + column, bit 4 the centre.
+using NeighbourOffsets = std::array<std::ptrdiff_t, 9>;
+
+// Bit j set when neighbour j holds an edge pixel not yet in a path: an entry >= 0, i.e.
+// with its sign bit clear. The centre, already in a path, is never fresh. The SSE2 form
+// reads each of the three rows as four entries (x - 1 .. x + 2), which the index
+// image's spare column keeps inside the buffer.
+inline std::uint32_t freshNeighbours(const std::int32_t* centre, const NeighbourOffsets& offsets) {
 #if defined(__SSE2__)
   auto signs = [](const std::int32_t* p) {
     return static_cast<std::uint32_t>(_mm_movemask_ps(_mm_castsi128_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)))));
   };
-  const std::uint32_t above = signs(centre + offsets[0]);
-  const std::uint32_t level = signs(centre - 1);
-  const std::uint32_t below = signs(centre + offsets[5]);
-  const std::uint32_t taken = (above & 7U) | ((level & 1U) << 3) | ((level & 4U) << 2) | ((below & 7U) << 5);
-  return ~taken & 0xFFU;
+  const std::uint32_t taken =
+      (signs(centre + offsets[0]) & 7U) | (signs(centre + offsets[3]) & 7U) << 3 | (signs(centre + offsets[6]) & 7U) << 6;
+  return ~taken & 0x1FFU;
 #else
   std::uint32_t fresh = 0;
   for (std::size_t j = 0; j < offsets.size(); ++j)
@@ -69,9 +70,11 @@ Status indexEdges(const EdgeList& edges, cv::Size imageSize, ConnectivityWorkspa
   std::int32_t* index = ws.index.ptr<std::int32_t>();
   const std::size_t stride = static_cast<std::size_t>(cols);
   ws.offsets.resize(edges.size());
+  // One comparison per coordinate: a negative one wraps far above the image size.
+  const auto width = static_cast<unsigned>(imageSize.width), height = static_cast<unsigned>(imageSize.height);
   for (std::size_t i = 0; i < edges.size(); ++i) {
     const EdgePixel& p = edges[i];
-    const bool inside = p.x >= 0 && p.y >= 0 && p.x < imageSize.width && p.y < imageSize.height;
+    const bool inside = static_cast<unsigned>(p.x) < width && static_cast<unsigned>(p.y) < height;
     const std::size_t offset = inside ? indexOffset(p, stride) : 0;
     if (!inside || index[offset] != kNoPixel) {
       for (std::size_t j = 0; j < i; ++j) index[ws.offsets[j]] = kNoPixel;
@@ -143,39 +146,41 @@ Status connectCN1(const EdgeList& edges, cv::Size imageSize, Paths& out, Connect
   startPaths(edges, out);
 
   std::int32_t* index = ws.index.ptr<std::int32_t>();
-  const std::size_t stride = static_cast<std::size_t>(ws.index.cols);
-  const std::ptrdiff_t s = static_cast<std::ptrdiff_t>(stride);
-  // The eight neighbours in raster order; the index image's one-pixel frame of -1
-  // makes them readable at the image border.
-  const std::array<std::ptrdiff_t, 8> neighbourOffsets = {-s - 1, -s, -s + 1, -1, 1, s - 1, s, s + 1};
+  const std::ptrdiff_t s = ws.index.cols;
+  // The index image's one-pixel frame of -1 makes the neighbours readable at the image
+  // border.
+  const NeighbourOffsets neighbourOffsets = {-s - 1, -s, -s + 1, -1, 0, 1, s - 1, s, s + 1};
 
-  // The reordered list, first as input indices; no allocation once it has grown.
+  // The reordered list is written straight into `out`; ws.order holds the index-image
+  // position of each of its pixels, so a pixel's neighbours are found without looking
+  // it up again. No allocation once both have grown.
   const std::size_t n = edges.size();
   const std::uint32_t* offsets = ws.offsets.data();
+  out.pixels.resize(n);
   ws.order.resize(n);
-  std::uint32_t* order = ws.order.data();
+  EdgePixel* pixels = out.pixels.data();
+  std::uint32_t* queue = ws.order.data();
   std::size_t tail = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    std::int32_t* seedEntry = index + offsets[i];
-    if (*seedEntry == kAssigned) continue;
-    *seedEntry = kAssigned;
-    order[tail++] = static_cast<std::uint32_t>(i);
+    if (index[offsets[i]] == kAssigned) continue;
+    index[offsets[i]] = kAssigned;
+    pixels[tail] = edges[i];
+    queue[tail++] = offsets[i];
     // The path grows at the list's end while `head` walks it.
     for (std::size_t head = out.starts.back(); head < tail; ++head) {
-      std::int32_t* centre = index + offsets[order[head]];
+      const std::ptrdiff_t centre = queue[head];
       // On a contour this is usually one neighbour, so the loop below rarely repeats.
-      std::uint32_t fresh = freshNeighbours(centre, neighbourOffsets);
+      std::uint32_t fresh = freshNeighbours(index + centre, neighbourOffsets);
       while (fresh != 0) {
-        std::int32_t* entry = centre + neighbourOffsets[static_cast<std::size_t>(std::countr_zero(fresh))];
+        const std::ptrdiff_t at = centre + neighbourOffsets[static_cast<std::size_t>(std::countr_zero(fresh))];
         fresh &= fresh - 1;
-        order[tail++] = static_cast<std::uint32_t>(*entry);
-        *entry = kAssigned;
+        pixels[tail] = edges[static_cast<std::size_t>(index[at])];
+        queue[tail++] = static_cast<std::uint32_t>(at);
+        index[at] = kAssigned;
       }
     }
     out.starts.push_back(static_cast<std::uint32_t>(tail));
   }
-  out.pixels.resize(n);
-  for (std::size_t j = 0; j < n; ++j) out.pixels[j] = edges[order[j]];
   clearIndex(ws);
   return Status::Ok;
 }

@@ -33,7 +33,7 @@ struct ConnectivityWorkspace {
   // frame only touches the entries of its own edge pixels.
   cv::Mat index;
   std::vector<std::uint32_t> offsets;     // each input pixel's position in `index`
-  std::vector<std::uint32_t> order;       // CN1: input indices in path order
+  std::vector<std::uint32_t> order;       // CN1: index-image position of each pixel, in path order
   std::vector<std::uint32_t> unassigned;  // CN0: input indices not yet in a path, in input order
 };
 
