@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -116,13 +117,17 @@ int firstAtMost(const std::uint8_t* row, int x, int x1, std::uint8_t level) {
   constexpr int kBlock = 16;
   std::array<std::uint8_t, kBlock> block{}, dark{};
   for (; x + kBlock <= x1 + 1; x += kBlock) {
-    // A per-pixel flag (vectorised like binarizeCrop), then two words tested at once.
+    // A per-pixel flag (vectorised like binarizeCrop), then two words tested at once; the
+    // first flagged byte is the answer (byte k of a little-endian word is pixel k).
     std::memcpy(block.data(), row + x, kBlock);
     for (int i = 0; i < kBlock; ++i) dark[i] = block[i] <= level ? 0xFF : 0;
     std::uint64_t lo = 0, hi = 0;
     std::memcpy(&lo, dark.data(), 8);
     std::memcpy(&hi, dark.data() + 8, 8);
-    if ((lo | hi) != 0) break;
+    if ((lo | hi) == 0) continue;
+    if constexpr (std::endian::native == std::endian::little)
+      return x + (lo != 0 ? std::countr_zero(lo) : 64 + std::countr_zero(hi)) / 8;
+    break;
   }
   while (x <= x1 && row[x] > level) ++x;
   return x;
@@ -224,11 +229,14 @@ struct LineWindow {
 // `roomPx` is the smaller of the line's run inside the rim and the rim's radius of
 // curvature there: on a target seen very obliquely the window would hold the far rim or a
 // strongly curved edge, and the linear crossing is kept.
+constexpr int kAreaHalfWindow = 4;  // pixels either side of the crossing
+constexpr double kAreaRoomPx = 3 * (kAreaHalfWindow + 2);  // the least room the area estimate needs
+
 bool areaCrossing(const LineWindow& line, int in, const EdgeLevels& levels, double roomPx, double& x0) {
-  constexpr int kHalfWindow = 4;  // pixels either side of the crossing
+  constexpr int kHalfWindow = kAreaHalfWindow;
   constexpr double kPlateauTolerance = 0.15;  // of the contrast: the window's ends are on the plateaus
   constexpr double kClassTolerance = 0.3;     // of the crop's contrast: plateaus near its class means
-  if (roomPx < 3 * (kHalfWindow + 2)) return false;
+  if (roomPx < kAreaRoomPx) return false;
   const int c = roundToInt(x0);
   if (!line.contains(c - kHalfWindow - 2) || !line.contains(c + kHalfWindow + 2)) return false;
   // px(j): the pixel j steps inwards from c, whichever way the line runs.
@@ -434,8 +442,8 @@ void fullPathMod(const ThresholdLines& lines, const cv::Rect& crop, const cv::Ma
   // SubPixel takes every n-th row and column on a large rim: about kSubPixelPoints evenly
   // spread points (a rim crosses about 2 sqrt(2) (a + b) rows and columns) are as good as
   // all of them to a few per cent of the error and cost a fraction of the time.
-  const int lineStep =
-      subPixel ? std::max(1, roundToInt(2.0 * M_SQRT2 * (detected.a + detected.b) / kSubPixelPoints)) : 1;
+  const double lineStep =
+      subPixel ? std::max(1.0, 2.0 * M_SQRT2 * (detected.a + detected.b) / kSubPixelPoints) : 1.0;
   // One crossing of a row or column with the rim, expected at `e`, the run inside the rim
   // along that line being `run` long; `in` points towards the inside.
   // The detected rim lies off the grey edge by about the same distance all round (the
@@ -444,12 +452,21 @@ void fullPathMod(const ThresholdLines& lines, const cv::Rect& crop, const cv::Ma
   // area estimate usually holds one clean edge and settles at once.
   double offsetSum = 0.0;
   int offsetCount = 0;
-  auto crossing = [&](const PixelLine& binary, const PixelLine& greyLine, double e, int in, double run,
-                      double curvature, double& at) {
+  // The room the area estimate has (see areaCrossing): the run inside the rim, and the rim's
+  // radius of curvature where the ellipse is curved tightly enough to matter (its least
+  // radius is b^2 / a).
+  const double tightest = std::min(detected.a, detected.b) * std::min(detected.a, detected.b) /
+                          std::max(detected.a, detected.b);
+  const bool curvatureMatters = subPixel && tightest < kAreaRoomPx;
+  auto room = [&](double run, double x, double y) {
+    return curvatureMatters && run >= kAreaRoomPx ? std::min(run, form.curvatureRadius(x, y)) : run;
+  };
+  auto crossing = [&](const PixelLine& binary, const PixelLine& greyLine, double e, int in, double roomPx,
+                      double& at) {
     // SubPixel starts from the detected rim itself; only where the grey levels there show no
     // clean edge does it start again from the binary crossing.
     auto refined = [&] {
-      if (!refineCrossing(greyLine, in, levels, std::min(run, curvature), at)) return false;
+      if (!refineCrossing(greyLine, in, levels, roomPx, at)) return false;
       offsetSum += (at - e) * in;
       ++offsetCount;
       return true;
@@ -465,28 +482,28 @@ void fullPathMod(const ThresholdLines& lines, const cv::Rect& crop, const cv::Ma
     return !subPixel || refined();
   };
   // Rows cross the parts of the rim whose normal is closer to horizontal.
-  for (int y = c.y; y < c.y + c.height; y += lineStep) {
+  for (double row = c.y; row < c.y + c.height; row += lineStep) {
+    const int y = static_cast<int>(row);
     double xs[2];
     if (!form.rowCrossings(y, xs[0], xs[1])) continue;
     const PixelLine binary = lines.row(y), greyLine = PixelLine::row(grey, y);
     for (int side = 0; side < 2; ++side) {
       if (!form.normalMostlyHorizontal(xs[side], y)) continue;
       double x;
-      if (crossing(binary, greyLine, xs[side], side == 0 ? 1 : -1, xs[1] - xs[0],
-                   subPixel ? form.curvatureRadius(xs[side], y) : 0.0, x))
+      if (crossing(binary, greyLine, xs[side], side == 0 ? 1 : -1, room(xs[1] - xs[0], xs[side], y), x))
         out.emplace_back(x, y);
     }
   }
   // Columns cross the rest.
-  for (int x = c.x; x < c.x + c.width; x += lineStep) {
+  for (double column = c.x; column < c.x + c.width; column += lineStep) {
+    const int x = static_cast<int>(column);
     double ys[2];
     if (!form.columnCrossings(x, ys[0], ys[1])) continue;
     const PixelLine binary = lines.column(x), greyLine = PixelLine::column(grey, x);
     for (int side = 0; side < 2; ++side) {
       if (form.normalMostlyHorizontal(x, ys[side])) continue;
       double y;
-      if (crossing(binary, greyLine, ys[side], side == 0 ? 1 : -1, ys[1] - ys[0],
-                   subPixel ? form.curvatureRadius(x, ys[side]) : 0.0, y))
+      if (crossing(binary, greyLine, ys[side], side == 0 ? 1 : -1, room(ys[1] - ys[0], x, ys[side]), y))
         out.emplace_back(x, y);
     }
   }
