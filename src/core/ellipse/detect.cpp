@@ -4,6 +4,12 @@
 #include <bit>
 #include <cmath>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include "core/ellipse/pixel_passes.h"
+
 namespace imagepro {
 
 namespace {
@@ -22,33 +28,66 @@ constexpr double kSpotSizeFactor = 2.5;
 // The consensus fit scores its candidates on at most this many pixels of the path.
 constexpr std::size_t kConsensusScorePoints = 128;
 
+// Paths shorter than this have exact double sums in summarise: offsets between int16
+// coordinates are below 2^16, and 2^20 * (2^16)^2 < 2^53.
+constexpr std::size_t kExactDoublePath = std::size_t{1} << 20;
+
 void summarise(std::span<const EdgePixel> path, PathSummary& s) {
-  int minx = path[0].x, maxx = minx, miny = path[0].y, maxy = miny;
-  // Exact integer sums about the first pixel (no cancellation; |offsets| < 2^15 and
-  // fewer than 2^31 pixels keep them below 2^63).
-  std::int64_t sx = 0, sy = 0, sxx = 0, syy = 0, sgx = 0, sgy = 0, sgp = 0;
+  const pixel_passes::Bounds b = pixel_passes::bounds(path);
+  // Exact integer sums about the first pixel (no cancellation): in 64-bit integers
+  // (|offsets| < 2^16 and fewer than 2^30 pixels keep them below 2^63) or, for paths
+  // of fewer than kExactDoublePath pixels, in doubles that hold the same integers.
+  double sx = 0, sy = 0, sxx_yy = 0, sgx = 0, sgy = 0, sgp = 0;
   const int ox = path[0].x, oy = path[0].y;
-  for (const EdgePixel& p : path) {
-    minx = std::min<int>(minx, p.x);
-    maxx = std::max<int>(maxx, p.x);
-    miny = std::min<int>(miny, p.y);
-    maxy = std::max<int>(maxy, p.y);
-    const std::int64_t x = p.x - ox, y = p.y - oy;
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    syy += y * y;
-    sgx += p.gx;
-    sgy += p.gy;
-    sgp += p.gx * x + p.gy * y;
+#if defined(__SSE2__)
+  if (path.size() < kExactDoublePath) {
+    const __m128i origin = _mm_setr_epi32(ox, oy, 0, 0);
+    // Lanes (x, y), (x^2, y^2), (gx, gy), (gx x, gy y).
+    __m128d s1 = _mm_setzero_pd(), s2 = s1, sg = s1, sgd = s1;
+    for (const EdgePixel& p : path) {
+      const __m128i v = pixel_passes::loadPixel(p);
+      const __m128d d = _mm_cvtepi32_pd(_mm_sub_epi32(v, origin));
+      const __m128d g = _mm_cvtepi32_pd(_mm_shuffle_epi32(v, _MM_SHUFFLE(3, 2, 3, 2)));
+      s1 = _mm_add_pd(s1, d);
+      s2 = _mm_add_pd(s2, _mm_mul_pd(d, d));
+      sg = _mm_add_pd(sg, g);
+      sgd = _mm_add_pd(sgd, _mm_mul_pd(g, d));
+    }
+    auto low = [](__m128d v) { return _mm_cvtsd_f64(v); };
+    auto high = [](__m128d v) { return _mm_cvtsd_f64(_mm_unpackhi_pd(v, v)); };
+    sx = low(s1);
+    sy = high(s1);
+    sxx_yy = low(s2) + high(s2);
+    sgx = low(sg);
+    sgy = high(sg);
+    sgp = low(sgd) + high(sgd);
+  } else
+#endif
+  {
+    std::int64_t ix = 0, iy = 0, ixx_yy = 0, igx = 0, igy = 0, igp = 0;
+    for (const EdgePixel& p : path) {
+      const std::int64_t x = p.x - ox, y = p.y - oy;
+      ix += x;
+      iy += y;
+      ixx_yy += x * x + y * y;
+      igx += p.gx;
+      igy += p.gy;
+      igp += p.gx * x + p.gy * y;
+    }
+    sx = static_cast<double>(ix);
+    sy = static_cast<double>(iy);
+    sxx_yy = static_cast<double>(ixx_yy);
+    sgx = static_cast<double>(igx);
+    sgy = static_cast<double>(igy);
+    sgp = static_cast<double>(igp);
   }
   const double n = static_cast<double>(path.size());
-  const double mx = static_cast<double>(sx) / n, my = static_cast<double>(sy) / n;
-  s.bbox = cv::Rect(minx, miny, maxx - minx + 1, maxy - miny + 1);
+  const double mx = sx / n, my = sy / n;
+  s.bbox = cv::Rect(b.min_x, b.min_y, b.max_x - b.min_x + 1, b.max_y - b.min_y + 1);
   s.cx = ox + mx;
   s.cy = oy + my;
-  s.rms_radius = std::sqrt(std::max(0.0, static_cast<double>(sxx + syy) / n - mx * mx - my * my));
-  s.polarity = static_cast<double>(sgp) - mx * static_cast<double>(sgx) - my * static_cast<double>(sgy);  // sum of g . (p - centroid)
+  s.rms_radius = std::sqrt(std::max(0.0, sxx_yy / n - mx * mx - my * my));
+  s.polarity = sgp - mx * sgx - my * sgy;  // sum of g . (p - centroid)
   s.fit_status = Status::TooFewPoints;
   s.fitted = false;
   s.accepted = false;

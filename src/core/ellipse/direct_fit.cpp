@@ -7,6 +7,12 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include "core/ellipse/pixel_passes.h"
+
 namespace imagepro {
 
 namespace {
@@ -65,6 +71,41 @@ struct PixelSums {
 constexpr int kMomentReach = 1 << 12;
 constexpr std::size_t kMomentBlock = std::size_t{1} << 12;
 
+#if defined(__SSE2__)
+// PixelSums of a block in doubles, two sums per instruction: with offsets below
+// kExactDoubleReach, (2^10)^4 * 2^12 = 2^52, every product and partial sum is an
+// integer below 2^53, so the doubles hold exactly PixelSums' integers.
+constexpr int kExactDoubleReach = 1 << 10;
+
+void exactSums(std::span<const EdgePixel> block, int ox, int oy, std::array<double, 15>& sum) {
+  const __m128i origin = _mm_setr_epi32(ox, oy, 0, 0);
+  const __m128d zero = _mm_setzero_pd();
+  // Lanes: (x, y), (x^2, y^2), (xy, xy), (x^3, y^3), (x^2 y, x y^2), (x^4, y^4),
+  // (x^3 y, x y^3), (x^2 y^2, x^2 y^2).
+  __m128d s1 = zero, s2 = zero, s11 = zero, s3 = zero, s21 = zero, s4 = zero, s31 = zero, s22 = zero;
+  for (const EdgePixel& p : block) {
+    const __m128d d = _mm_cvtepi32_pd(_mm_sub_epi32(pixel_passes::loadPixel(p), origin));
+    const __m128d swapped = _mm_shuffle_pd(d, d, 1);
+    const __m128d sq = _mm_mul_pd(d, d), xy = _mm_mul_pd(d, swapped);
+    s1 = _mm_add_pd(s1, d);
+    s2 = _mm_add_pd(s2, sq);
+    s11 = _mm_add_pd(s11, xy);
+    s3 = _mm_add_pd(s3, _mm_mul_pd(sq, d));
+    s21 = _mm_add_pd(s21, _mm_mul_pd(sq, swapped));
+    s4 = _mm_add_pd(s4, _mm_mul_pd(sq, sq));
+    s31 = _mm_add_pd(s31, _mm_mul_pd(sq, xy));
+    s22 = _mm_add_pd(s22, _mm_mul_pd(sq, _mm_shuffle_pd(sq, sq, 1)));
+  }
+  auto low = [](__m128d v) { return _mm_cvtsd_f64(v); };
+  auto high = [](__m128d v) { return _mm_cvtsd_f64(_mm_unpackhi_pd(v, v)); };
+  sum = {static_cast<double>(block.size()),
+         low(s1), high(s1),
+         low(s2), low(s11), high(s2),
+         low(s3), low(s21), high(s21), high(s3),
+         low(s4), low(s31), low(s22), high(s31), high(s4)};
+}
+#endif
+
 // Points whose best unconstrained conic is a hyperbola or parabola that fits this many
 // times better (algebraic residual) than the best ellipse are reported as NotAnEllipse.
 // Digitised ellipse arcs stay well below this ratio (tests: partial arcs).
@@ -100,24 +141,42 @@ void ConicMoments::add(std::span<const EdgePixel> points) {
   // kMomentReach) take the floating-point sums.
   for (std::size_t start = 0; start < points.size(); start += kMomentBlock) {
     const std::size_t end = std::min(points.size(), start + kMomentBlock);
-    int lo = 0, hi = 0;
-    for (std::size_t k = start; k < end; ++k) {
-      lo = std::min({lo, points[k].x - ox, points[k].y - oy});
-      hi = std::max({hi, points[k].x - ox, points[k].y - oy});
-    }
+    const auto block = points.subspan(start, end - start);
+    const pixel_passes::Bounds b = pixel_passes::bounds(block);
+    const int lo = std::min({0, b.min_x - ox, b.min_y - oy}), hi = std::max({0, b.max_x - ox, b.max_y - oy});
     if (lo <= -kMomentReach || hi >= kMomentReach) {
-      for (std::size_t k = start; k < end; ++k) accumulate(sum, points[k].x - ox, points[k].y - oy);
+      for (const EdgePixel& p : block) accumulate(sum, p.x - ox, p.y - oy);
       continue;
     }
-    PixelSums s;
-    for (std::size_t k = start; k < end; ++k) s.add(points[k].x - ox, points[k].y - oy);
-    for (int k = 0; k < 15; ++k) sum[k] += static_cast<double>(s.sum[k]);
+    std::array<double, 15> block_sum;
+#if defined(__SSE2__)
+    if (lo > -kExactDoubleReach && hi < kExactDoubleReach) {
+      exactSums(block, ox, oy, block_sum);
+    } else
+#endif
+    {
+      PixelSums s;
+      for (const EdgePixel& p : block) s.add(p.x - ox, p.y - oy);
+      for (int k = 0; k < 15; ++k) block_sum[k] = static_cast<double>(s.sum[k]);
+    }
+    for (int k = 0; k < 15; ++k) sum[k] += block_sum[k];
   }
   count += points.size();
 }
 
 void ConicMoments::add(std::span<const Eigen::Vector2d> points) {
-  for (const Eigen::Vector2d& p : points) add(p.x(), p.y());
+  if (points.empty()) return;
+  if (count == 0) {
+    origin_x = points[0].x();
+    origin_y = points[0].y();
+  }
+  // The same sums as add(x, y) point by point, kept in locals: stores into the member
+  // array could alias the points and force a reload of every sum per point.
+  const double ox = origin_x, oy = origin_y;
+  std::array<double, 15> s = sum;
+  for (const Eigen::Vector2d& p : points) accumulate(s, p.x() - ox, p.y() - oy);
+  sum = s;
+  count += points.size();
 }
 
 Status fitEllipse(const ConicMoments& mom, EllipseFit& fit) {
@@ -141,13 +200,17 @@ Status fitEllipse(const ConicMoments& mom, EllipseFit& fit) {
   double nm[5][5] = {};
   const double pmx[5] = {1, -mx, mx * mx, -mx * mx * mx, mx * mx * mx * mx};
   const double pmy[5] = {1, -my, my * my, -my * my * my, my * my * my * my};
-  for (int i = 0; i <= 4; ++i) {
-    for (int j = 0; i + j <= 4; ++j) {
+  // By degree: every N(i, j) of one degree divides by the same power of the scale,
+  // computed once (by std::pow; products of the scale would round differently).
+  for (int degree = 0; degree <= 4; ++degree) {
+    const double scale_power = std::pow(scale, degree);
+    for (int i = 0; i <= degree; ++i) {
+      const int j = degree - i;
       double acc = 0.0;
       for (int p = 0; p <= i; ++p)
         for (int q = 0; q <= j; ++q)
           acc += kBinomial[i][p] * kBinomial[j][q] * pmx[i - p] * pmy[j - q] * s[idx(p, q)];
-      nm[i][j] = acc / std::pow(scale, i + j);
+      nm[i][j] = acc / scale_power;
     }
   }
   nm[1][0] = nm[0][1] = 0.0;  // exact by construction
@@ -363,26 +426,58 @@ inline double fastAtan2(double y, double x) {
   return y < 0.0 ? -r : r;
 }
 
+// cos t and sin t at t = 2 pi k / kArcSamples by a rotation recurrence (no
+// trigonometry), the same for every ellipse: computed once.
+struct UnitCircle {
+  std::array<double, kArcSamples + 1> c{}, s{};
+};
+const UnitCircle& unitCircle() {
+  static const UnitCircle circle = [] {
+    UnitCircle u;
+    const double step_c = std::cos(kTwoPi / kArcSamples), step_s = std::sin(kTwoPi / kArcSamples);
+    double c = 1.0, sn = 0.0;
+    u.c[0] = 1.0;
+    for (int k = 1; k <= kArcSamples; ++k) {
+      const double c2 = c * step_c - sn * step_s;
+      sn = sn * step_c + c * step_s;
+      c = c2;
+      u.c[k] = c;
+      u.s[k] = sn;
+    }
+    return u;
+  }();
+  return circle;
+}
+
 // Points of the ellipse (a cos t, b sin t) and the arc length from t = 0, tabulated at
-// t = 2 pi k / kArcSamples (the angles by a rotation recurrence, no trigonometry).
+// t = 2 pi k / kArcSamples.
 struct ArcTable {
   std::array<double, kArcSamples + 1> s{}, x{}, y{};
   double perimeter = 0.0;
 
   ArcTable(double a, double b) {
-    const double step_c = std::cos(kTwoPi / kArcSamples), step_s = std::sin(kTwoPi / kArcSamples);
-    double c = 1.0, sn = 0.0;
+    const UnitCircle& unit = unitCircle();
     x[0] = a;
     y[0] = 0.0;
     for (int k = 1; k <= kArcSamples; ++k) {
-      const double c2 = c * step_c - sn * step_s;
-      sn = sn * step_c + c * step_s;
-      c = c2;
-      x[k] = a * c;
-      y[k] = b * sn;
-      const double dx = x[k] - x[k - 1], dy = y[k] - y[k - 1];
-      s[k] = s[k - 1] + std::sqrt(dx * dx + dy * dy);
+      x[k] = a * unit.c[k];
+      y[k] = b * unit.s[k];
     }
+    // The chords' lengths, two at a time where SSE2 allows, then their running sum.
+    std::array<double, kArcSamples + 1> chord;
+    int k = 1;
+#if defined(__SSE2__)
+    for (; k + 1 <= kArcSamples; k += 2) {
+      const __m128d dx = _mm_sub_pd(_mm_loadu_pd(&x[k]), _mm_loadu_pd(&x[k - 1]));
+      const __m128d dy = _mm_sub_pd(_mm_loadu_pd(&y[k]), _mm_loadu_pd(&y[k - 1]));
+      _mm_storeu_pd(&chord[k], _mm_sqrt_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy))));
+    }
+#endif
+    for (; k <= kArcSamples; ++k) {
+      const double dx = x[k] - x[k - 1], dy = y[k] - y[k - 1];
+      chord[k] = std::sqrt(dx * dx + dy * dy);
+    }
+    for (k = 1; k <= kArcSamples; ++k) s[k] = s[k - 1] + chord[k];
     perimeter = s[kArcSamples];
   }
   double arcAt(double t) const {  // t in [0, 2 pi)
@@ -391,6 +486,111 @@ struct ArcTable {
     return s[k] + (f - k) * (s[k + 1] - s[k]);
   }
 };
+
+// What trace() needs per point, fixed for one ellipse.
+struct TraceFrame {
+  double c0, c1, c2, c3, c4, c5;  // the conic in the fit's normalised frame
+  double scale, inv_scale, ox, oy;
+  double cx, cy, cs, sn, inv_a, inv_b, b;  // the ellipse
+  double inlier_px, arcs_per_px;
+  int arcs;
+};
+
+// The arc (index) of an inlier's foot at parametric angle t (fastAtan2's range).
+inline int arcIndex(const TraceFrame& k, const ArcTable& table, double t) {
+  if (t < 0.0) t += kTwoPi;
+  return std::min(k.arcs - 1, static_cast<int>(table.arcAt(t) * k.arcs_per_px));
+}
+
+// One point: adds its Sampson distance to `total` and, for an inlier, marks its arc.
+inline void tracePoint(const TraceFrame& k, const ArcTable& table, double x, double y, double& total,
+                       std::size_t& inliers, unsigned char* traced) {
+  const double u = (x - k.ox) * k.inv_scale, v = (y - k.oy) * k.inv_scale;
+  const double f = k.c0 * u * u + k.c1 * u * v + k.c2 * v * v + k.c3 * u + k.c4 * v + k.c5;
+  const double gu = 2.0 * k.c0 * u + k.c1 * v + k.c3;
+  const double gv = k.c1 * u + 2.0 * k.c2 * v + k.c4;
+  const double g2 = gu * gu + gv * gv;
+  if (!(g2 > 0.0)) {  // the centre: as far as the minor semi-axis
+    total += k.b;
+    return;
+  }
+  const double ig = 1.0 / std::sqrt(g2);
+  const double d = k.scale * std::abs(f) * ig;
+  total += d;
+  if (d > k.inlier_px) return;
+  ++inliers;
+  // The arc of the point's foot on the ellipse (one first-order projection step): the
+  // raw parametric angle of an off-curve point is far off near the ends of a thin ellipse.
+  const double step = f * ig * ig * k.scale;
+  const double dx = x - step * gu - k.cx, dy = y - step * gv - k.cy;
+  traced[arcIndex(k, table, fastAtan2((-dx * k.sn + dy * k.cs) * k.inv_b, (dx * k.cs + dy * k.sn) * k.inv_a))] = 1;
+}
+
+#if defined(__SSE2__)
+// A TraceFrame's numbers in both lanes, set up once per trace.
+struct TraceFramePair {
+  explicit TraceFramePair(const TraceFrame& k)
+      : c0(_mm_set1_pd(k.c0)), c1(_mm_set1_pd(k.c1)), c2(_mm_set1_pd(k.c2)), c3(_mm_set1_pd(k.c3)),
+        c4(_mm_set1_pd(k.c4)), c5(_mm_set1_pd(k.c5)), two_c0(_mm_set1_pd(2.0 * k.c0)), two_c2(_mm_set1_pd(2.0 * k.c2)),
+        scale(_mm_set1_pd(k.scale)), inv_scale(_mm_set1_pd(k.inv_scale)), ox(_mm_set1_pd(k.ox)), oy(_mm_set1_pd(k.oy)),
+        cx(_mm_set1_pd(k.cx)), cy(_mm_set1_pd(k.cy)), cs(_mm_set1_pd(k.cs)), sn(_mm_set1_pd(k.sn)),
+        inv_a(_mm_set1_pd(k.inv_a)), inv_b(_mm_set1_pd(k.inv_b)), inlier_px(_mm_set1_pd(k.inlier_px)) {}
+  __m128d c0, c1, c2, c3, c4, c5, two_c0, two_c2, scale, inv_scale, ox, oy, cx, cy, cs, sn, inv_a, inv_b, inlier_px;
+};
+
+// tracePoint on two points at once, lane 0 the first: the same operations in the same
+// order, so bit for bit the same result. False, with nothing done, when a point is the
+// ellipse's centre; the caller then takes them one by one.
+inline bool tracePair(const TraceFrame& k, const TraceFramePair& kk, const ArcTable& table, __m128d x, __m128d y,
+                      double& total, std::size_t& inliers, unsigned char* traced) {
+  auto add = [](__m128d a, __m128d b) { return _mm_add_pd(a, b); };
+  auto sub = [](__m128d a, __m128d b) { return _mm_sub_pd(a, b); };
+  auto mul = [](__m128d a, __m128d b) { return _mm_mul_pd(a, b); };
+  const __m128d sign = _mm_set1_pd(-0.0), zero = _mm_setzero_pd();
+  auto abs = [&](__m128d a) { return _mm_andnot_pd(sign, a); };
+  // where(mask, a, b): a in the lanes of mask, b elsewhere.
+  auto where = [](__m128d mask, __m128d a, __m128d b) { return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b)); };
+  auto lane1 = [](__m128d a) { return _mm_cvtsd_f64(_mm_unpackhi_pd(a, a)); };
+
+  const __m128d u = mul(sub(x, kk.ox), kk.inv_scale), v = mul(sub(y, kk.oy), kk.inv_scale);
+  const __m128d f =
+      add(add(add(add(add(mul(mul(kk.c0, u), u), mul(mul(kk.c1, u), v)), mul(mul(kk.c2, v), v)), mul(kk.c3, u)),
+              mul(kk.c4, v)),
+          kk.c5);
+  const __m128d gu = add(add(mul(kk.two_c0, u), mul(kk.c1, v)), kk.c3);
+  const __m128d gv = add(add(mul(kk.c1, u), mul(kk.two_c2, v)), kk.c4);
+  const __m128d g2 = add(mul(gu, gu), mul(gv, gv));
+  if (_mm_movemask_pd(_mm_cmpgt_pd(g2, zero)) != 3) return false;
+  const __m128d ig = _mm_div_pd(_mm_set1_pd(1.0), _mm_sqrt_pd(g2));
+  const __m128d d = mul(mul(kk.scale, abs(f)), ig);
+  total += _mm_cvtsd_f64(d);
+  total += lane1(d);
+  const int inlier = _mm_movemask_pd(_mm_cmpngt_pd(d, kk.inlier_px));
+  if (inlier == 0) return true;
+  inliers += static_cast<std::size_t>((inlier & 1) + (inlier >> 1));  // no popcount call on baseline x86-64
+
+  const __m128d step = mul(mul(mul(f, ig), ig), kk.scale);
+  const __m128d dx = sub(sub(x, mul(step, gu)), kk.cx), dy = sub(sub(y, mul(step, gv)), kk.cy);
+  const __m128d ey = mul(add(mul(_mm_xor_pd(dx, sign), kk.sn), mul(dy, kk.cs)), kk.inv_b);
+  const __m128d ex = mul(add(mul(dx, kk.cs), mul(dy, kk.sn)), kk.inv_a);
+  // fastAtan2(ey, ex), its branches as selections.
+  const __m128d ax = abs(ex), ay = abs(ey);
+  const __m128d hi = _mm_max_pd(ay, ax), lo = _mm_min_pd(ay, ax);  // std::max(ax, ay), std::min(ax, ay)
+  const __m128d q = _mm_div_pd(lo, hi), q2 = mul(q, q);
+  __m128d r = add(_mm_set1_pd(0.05265332), mul(q2, _mm_set1_pd(-0.01172120)));
+  r = add(_mm_set1_pd(-0.11643287), mul(q2, r));
+  r = add(_mm_set1_pd(0.19354346), mul(q2, r));
+  r = add(_mm_set1_pd(-0.33262347), mul(q2, r));
+  r = mul(q, add(_mm_set1_pd(0.99997726), mul(q2, r)));
+  r = where(_mm_cmpgt_pd(ay, ax), sub(_mm_set1_pd(0.5 * kPi), r), r);
+  r = where(_mm_cmplt_pd(ex, zero), sub(_mm_set1_pd(kPi), r), r);
+  r = where(_mm_cmplt_pd(ey, zero), _mm_xor_pd(r, sign), r);
+  const __m128d t = _mm_and_pd(_mm_cmpgt_pd(hi, zero), r);  // 0 where hi is not positive
+  if (inlier & 1) traced[arcIndex(k, table, _mm_cvtsd_f64(t))] = 1;
+  if (inlier & 2) traced[arcIndex(k, table, lane1(t))] = 1;
+  return true;
+}
+#endif
 
 template <class Points, class Get>
 void trace(const EllipseFit& fit, const Points& points, double inlier_px, cv::Size image,
@@ -404,35 +604,29 @@ void trace(const EllipseFit& fit, const Points& points, double inlier_px, cv::Si
   std::array<unsigned char, kMaxArcs> traced{};
   const double th = e.angle_deg * kPi / 180.0;
   const double cs = std::cos(th), sn = std::sin(th);
-  const double ia = 1.0 / e.a, ib = 1.0 / e.b;
   const Conic& c = fit.normalised;
-  const double is = 1.0 / fit.scale;
-  const double ox = fit.origin.x(), oy = fit.origin.y();
+  const TraceFrame frame{.c0 = c(0), .c1 = c(1), .c2 = c(2), .c3 = c(3), .c4 = c(4), .c5 = c(5),
+                         .scale = fit.scale, .inv_scale = 1.0 / fit.scale, .ox = fit.origin.x(), .oy = fit.origin.y(),
+                         .cx = e.cx, .cy = e.cy, .cs = cs, .sn = sn, .inv_a = 1.0 / e.a, .inv_b = 1.0 / e.b, .b = e.b,
+                         .inlier_px = inlier_px, .arcs_per_px = arcs_per_px, .arcs = arcs};
   double total = 0.0;
-  for (const auto& p : points) {
-    const auto [x, y] = get(p);
-    const double u = (x - ox) * is, v = (y - oy) * is;
-    const double f = c(0) * u * u + c(1) * u * v + c(2) * v * v + c(3) * u + c(4) * v + c(5);
-    const double gu = 2.0 * c(0) * u + c(1) * v + c(3);
-    const double gv = c(1) * u + 2.0 * c(2) * v + c(4);
-    const double g2 = gu * gu + gv * gv;
-    if (!(g2 > 0.0)) {  // the centre: as far as the minor semi-axis
-      total += e.b;
-      continue;
-    }
-    const double ig = 1.0 / std::sqrt(g2);
-    const double d = fit.scale * std::abs(f) * ig;
-    total += d;
-    if (d > inlier_px) continue;
-    ++out.inliers;
-    // The arc of the point's foot on the ellipse (one first-order projection step): the
-    // raw parametric angle of an off-curve point is far off near the ends of a thin ellipse.
-    const double step = f * ig * ig * fit.scale;
-    const double dx = x - step * gu - e.cx, dy = y - step * gv - e.cy;
-    double t = fastAtan2((-dx * sn + dy * cs) * ib, (dx * cs + dy * sn) * ia);
-    if (t < 0.0) t += kTwoPi;
-    traced[std::min(arcs - 1, static_cast<int>(table.arcAt(t) * arcs_per_px))] = 1;
+  std::size_t inliers = 0;
+  std::size_t i = 0;
+#if defined(__SSE2__)
+  const TraceFramePair pair(frame);
+  for (; i + 1 < points.size(); i += 2) {
+    const auto [x0, y0] = get(points[i]);
+    const auto [x1, y1] = get(points[i + 1]);
+    if (tracePair(frame, pair, table, _mm_set_pd(x1, x0), _mm_set_pd(y1, y0), total, inliers, traced.data())) continue;
+    tracePoint(frame, table, x0, y0, total, inliers, traced.data());
+    tracePoint(frame, table, x1, y1, total, inliers, traced.data());
   }
+#endif
+  for (; i < points.size(); ++i) {
+    const auto [x, y] = get(points[i]);
+    tracePoint(frame, table, x, y, total, inliers, traced.data());
+  }
+  out.inliers = inliers;
   out.mean_sampson_px = points.empty() ? 0.0 : total / static_cast<double>(points.size());
   int n_traced = 0;
   for (int k = 0; k < arcs; ++k) n_traced += traced[k];
