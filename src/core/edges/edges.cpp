@@ -1,11 +1,15 @@
 #include "core/edges/edges.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
-#include <iterator>
 #include <cstdint>
 #include <cstdlib>
-#include <cstring>
+#include <iterator>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace imagepro {
 
@@ -22,28 +26,87 @@ inline int bit(std::uint8_t v) { return v != 0 ? 1 : 0; }
 
 // Sobel responses (eqs. 2.19-2.20) of the 0/1 image at column x, given the pixel's
 // row and the rows above and below (already replicated at the image border).
-// kInterior: the caller guarantees 0 < x < width - 1, so no column is replicated.
-template <bool kInterior = false>
 inline EdgePixel sobelPixel(const std::uint8_t* up, const std::uint8_t* cur, const std::uint8_t* down, int x,
                             int y, int width) {
-  const int l = kInterior || x > 0 ? x - 1 : 0;
-  const int r = kInterior || x < width - 1 ? x + 1 : x;
+  const int l = x > 0 ? x - 1 : 0;
+  const int r = x < width - 1 ? x + 1 : x;
   const int gx = (bit(up[r]) + 2 * bit(cur[r]) + bit(down[r])) - (bit(up[l]) + 2 * bit(cur[l]) + bit(down[l]));
   const int gy = (bit(down[l]) + 2 * bit(down[x]) + bit(down[r])) - (bit(up[l]) + 2 * bit(up[x]) + bit(up[r]));
   return {static_cast<std::int16_t>(x), static_cast<std::int16_t>(y), static_cast<std::int16_t>(gx),
           static_cast<std::int16_t>(gy)};
 }
 
-// Eight pixels at a time. zeroBytes(v) has 0x80 in every byte of v that is zero and 0
-// elsewhere; it is exact (no carry crosses a byte), unlike the usual "has zero" test.
-constexpr std::uint64_t kLow7 = 0x7F7F7F7F7F7F7F7FULL;
-constexpr std::uint64_t kHigh = 0x8080808080808080ULL;
-constexpr std::uint64_t kAllWhite = ~std::uint64_t{0};
-inline std::uint64_t zeroBytes(std::uint64_t v) { return ~(((v & kLow7) + kLow7) | v) & kHigh; }
-inline std::uint64_t load8(const std::uint8_t* p) {
-  std::uint64_t v;
-  std::memcpy(&v, p, sizeof v);
+// Sixteen pixels at a time: load16 reads p[0] .. p[15], darker is the bytewise
+// minimum, and bit k of blackMask is set when byte k is black (zero).
+#if defined(__SSE2__)
+using Pixels16 = __m128i;
+inline Pixels16 load16(const std::uint8_t* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); }
+inline Pixels16 darker(Pixels16 a, Pixels16 b) { return _mm_min_epu8(a, b); }
+inline unsigned blackMask(Pixels16 v) {
+  return static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_setzero_si128())));
+}
+#else
+using Pixels16 = std::array<std::uint8_t, 16>;
+inline Pixels16 load16(const std::uint8_t* p) {
+  Pixels16 v;
+  std::copy_n(p, v.size(), v.begin());
   return v;
+}
+inline Pixels16 darker(Pixels16 a, const Pixels16& b) {
+  for (std::size_t k = 0; k < a.size(); ++k) a[k] = std::min(a[k], b[k]);
+  return a;
+}
+inline unsigned blackMask(const Pixels16& v) {
+  unsigned mask = 0;
+  for (std::size_t k = 0; k < v.size(); ++k) mask |= static_cast<unsigned>(v[k] == 0) << k;
+  return mask;
+}
+#endif
+
+// An edge pixel as its eight bytes, so it is put together with two ORs: the fields
+// never share a byte, whatever the byte order.
+constexpr std::uint64_t bitsOf(const EdgePixel& p) { return std::bit_cast<std::uint64_t>(p); }
+
+// The Sobel responses (eqs. 2.19-2.20) of a 3x3 neighbourhood of the 0/1 image,
+// indexed by its black pixels: bit 3 * row + column, rows up, centre, down and
+// columns left, centre, right. Held as edge pixels at (0, 0).
+constexpr std::array<std::uint64_t, 512> kSobelByBlackNeighbourhood = [] {
+  std::array<std::uint64_t, 512> table{};
+  for (int i = 0; i < 512; ++i) {
+    auto w = [i](int row, int col) { return ((i >> (3 * row + col)) & 1) != 0 ? 0 : 1; };
+    const auto gx = static_cast<std::int16_t>((w(0, 2) + 2 * w(1, 2) + w(2, 2)) - (w(0, 0) + 2 * w(1, 0) + w(2, 0)));
+    const auto gy = static_cast<std::int16_t>((w(2, 0) + 2 * w(2, 1) + w(2, 2)) - (w(0, 0) + 2 * w(0, 1) + w(0, 2)));
+    table[static_cast<std::size_t>(i)] = bitsOf(EdgePixel{0, 0, gx, gy});
+  }
+  return table;
+}();
+
+// Eq. 2.25 on the sixteen pixels x .. x + 15 of a row (1 <= x, x + 16 < width), those
+// of `keep` only. A block of black pixels, the common case in a dark scene, costs one
+// load; any other block six loads.
+inline void laplaceBlock(const std::uint8_t* up, const std::uint8_t* cur, const std::uint8_t* down, int x, int y,
+                         unsigned keep, EdgeList& out) {
+  const unsigned black = blackMask(load16(cur + x));
+  if ((~black & keep) == 0) return;
+  const Pixels16 left = load16(cur + x - 1), right = load16(cur + x + 1);
+  // A black 4-neighbour makes the darkest of the four black.
+  const unsigned blackNeighbour =
+      blackMask(darker(darker(load16(up + x), load16(down + x)), darker(left, right)));
+  unsigned edge = ~black & keep & blackNeighbour;
+  if (edge == 0) return;
+  // The black pixels of the three rows over x - 1 .. x + 16 in three 21-bit fields:
+  // shifted right by k, each field's low three bits are the neighbourhood of pixel x + k.
+  auto row18 = [](const Pixels16& l, const Pixels16& r) { return std::uint64_t{blackMask(l) | blackMask(r) << 2}; };
+  const std::uint64_t rows = row18(load16(up + x - 1), load16(up + x + 1)) | row18(left, right) << 21 |
+                             row18(load16(down + x - 1), load16(down + x + 1)) << 42;
+  const std::uint64_t row = bitsOf(EdgePixel{0, static_cast<std::int16_t>(y), 0, 0});
+  while (edge != 0) {
+    const int k = std::countr_zero(edge);
+    edge &= edge - 1;
+    const std::uint64_t w = rows >> k;
+    const std::uint64_t gradient = kSobelByBlackNeighbourhood[(w & 0x7U) | (w >> 18 & 0x38U) | (w >> 36 & 0x1C0U)];
+    out.push_back(std::bit_cast<EdgePixel>(gradient | row | bitsOf(EdgePixel{static_cast<std::int16_t>(x + k), 0, 0, 0})));
+  }
 }
 
 // Eq. 2.25 on one row. Rows above/below are the row itself at the image border, and
@@ -57,31 +120,19 @@ void laplaceRow(const std::uint8_t* up, const std::uint8_t* cur, const std::uint
     const int r = x < width - 1 ? x + 1 : x;
     if (up[x] == 0 || down[x] == 0 || cur[l] == 0 || cur[r] == 0) out.push_back(sobelPixel(up, cur, down, x, y, width));
   };
-  int x = 0;
-  if constexpr (std::endian::native == std::endian::little) {
-    // Byte k of a little-endian load is pixel x + k. Whole words need cur[x - 1] and
-    // cur[x + 8], so they cover columns 1 .. width - 2; the rest goes pixel by pixel.
-    if (width >= 10) {
-      scalar(0);
-      for (x = 1; x + 9 <= width; x += 8) {
-        const std::uint64_t c = load8(cur + x);
-        if (c == 0) continue;  // eight black pixels: the common case in a dark scene
-        // Eight 255s with 255 above, below and at both ends: inside a white region.
-        if (c == kAllWhite && load8(up + x) == kAllWhite && load8(down + x) == kAllWhite && cur[x - 1] != 0 &&
-            cur[x + 8] != 0)
-          continue;
-        std::uint64_t edge = ~zeroBytes(c) & kHigh &
-                             (zeroBytes(load8(up + x)) | zeroBytes(load8(down + x)) | zeroBytes(load8(cur + x - 1)) |
-                              zeroBytes(load8(cur + x + 1)));
-        while (edge != 0) {
-          const int k = std::countr_zero(edge) >> 3;
-          out.push_back(sobelPixel<true>(up, cur, down, x + k, y, width));
-          edge &= edge - 1;
-        }
-      }
-    }
+  constexpr int kBlock = 16;
+  // Blocks read cur[x - 1] .. cur[x + 16], so they cover columns 1 .. width - 2; the
+  // last one overlaps its predecessor and keeps only the columns not yet done.
+  if (width < kBlock + 2) {
+    for (int x = 0; x < width; ++x) scalar(x);
+    return;
   }
-  for (; x < width; ++x) scalar(x);
+  scalar(0);
+  const int last = width - 1 - kBlock;
+  int x = 1;
+  for (; x <= last; x += kBlock) laplaceBlock(up, cur, down, x, y, 0xFFFFU, out);
+  if (x < width - 1) laplaceBlock(up, cur, down, last, y, 0xFFFFU << (x - last) & 0xFFFFU, out);
+  scalar(width - 1);
 }
 
 }  // namespace
@@ -91,10 +142,11 @@ Status detectEdgesLaplace(const cv::Mat& binary, EdgeList& out) {
   if (!usableBinary(binary)) return Status::EmptyFrame;
   const int width = binary.cols;
   const int height = binary.rows;
+  const std::size_t step = binary.step;
   for (int y = 0; y < height; ++y) {
-    const std::uint8_t* cur = binary.ptr<std::uint8_t>(y);
-    const std::uint8_t* up = y > 0 ? binary.ptr<std::uint8_t>(y - 1) : cur;
-    const std::uint8_t* down = y < height - 1 ? binary.ptr<std::uint8_t>(y + 1) : cur;
+    const std::uint8_t* cur = binary.data + step * static_cast<std::size_t>(y);
+    const std::uint8_t* up = y > 0 ? cur - step : cur;
+    const std::uint8_t* down = y < height - 1 ? cur + step : cur;
     laplaceRow(up, cur, down, y, width, out);
   }
   return out.empty() ? Status::NoEdges : Status::Ok;
