@@ -191,36 +191,6 @@ struct EdgeLevels {
   double minContrast() const { return kMinSubPixelContrastFraction * std::max(contrast(), 1.0); }
 };
 
-// The pixels of a line within kReach of pixel c, read once as integers: the crossing's
-// estimates below touch them several times.
-struct LineWindow {
-  static constexpr int kReach = 7;
-  int first = 0, last = -1;  // the line coordinates held, c - kReach .. c + kReach
-  std::array<int, 2 * kReach + 1> g{};
-
-  bool load(const PixelLine& line, int c) {
-    if (!line.contains(c - kReach) || !line.contains(c + kReach)) return false;
-    first = c - kReach;
-    last = c + kReach;
-    const std::uint8_t* p = line.data + (first - line.first) * line.stride;
-    if (line.stride == 1) {
-      for (int i = 0; i <= 2 * kReach; ++i) g[i] = p[i];  // a row: one contiguous read
-    } else {
-      for (int i = 0; i <= 2 * kReach; ++i, p += line.stride) g[i] = *p;
-    }
-    return true;
-  }
-  bool contains(int k) const { return k >= first && k <= last; }
-  int at(int k) const { return g[k - first]; }
-  bool interp(double x, double& value) const {
-    const int k = floorToInt(x);
-    if (k < first || k + 1 > last) return false;
-    const double f = x - k;
-    value = (1.0 - f) * at(k) + f * at(k + 1);
-    return true;
-  }
-};
-
 // The edge's position from the area under the profile: over pixels a..b straddling the edge,
 // each pixel's grey level, scaled between the two plateaus, is the white fraction of its
 // length, so the white run's length fixes the edge. Exact for a straight edge under any
@@ -232,7 +202,7 @@ struct LineWindow {
 constexpr int kAreaHalfWindow = 4;  // pixels either side of the crossing
 constexpr double kAreaRoomPx = 3 * (kAreaHalfWindow + 2);  // the least room the area estimate needs
 
-bool areaCrossing(const LineWindow& line, int in, const EdgeLevels& levels, double roomPx, double& x0) {
+bool areaCrossing(const PixelLine& line, int in, const EdgeLevels& levels, double roomPx, double& x0) {
   constexpr int kHalfWindow = kAreaHalfWindow;
   constexpr double kPlateauTolerance = 0.15;  // of the contrast: the window's ends are on the plateaus
   constexpr double kClassTolerance = 0.3;     // of the crop's contrast: plateaus near its class means
@@ -240,8 +210,9 @@ bool areaCrossing(const LineWindow& line, int in, const EdgeLevels& levels, doub
   const int c = roundToInt(x0);
   if (!line.contains(c - kHalfWindow - 2) || !line.contains(c + kHalfWindow + 2)) return false;
   // px(j): the pixel j steps inwards from c, whichever way the line runs.
-  const int* centre = line.g.data() + (c - line.first);
-  auto px = [&](int j) { return centre[j * in]; };
+  const std::uint8_t* centre = line.data + (c - line.first) * line.stride;
+  const std::ptrdiff_t inwards = in * line.stride;
+  auto px = [&](int j) { return int{centre[j * inwards]}; };
   // Plateaus just beyond the window, as sums of their two pixels (integers, so the tests on
   // the mid-level below are exact).
   const int outside2 = px(-kHalfWindow - 1) + px(-kHalfWindow - 2);
@@ -259,15 +230,18 @@ bool areaCrossing(const LineWindow& line, int in, const EdgeLevels& levels, doub
     return false;
   // One clean edge: white more than 1.5 px on its inner side, black more than 1.5 px on its
   // outer side, nothing else (a spot, or the far rim of a target seen obliquely) in the window.
-  // A pixel g is below the mid-level (outside + inside) / 2 exactly when 4 g < mid4.
+  // x0 lies u inwards of c with |u| <= 1/2: the white side starts at j = floor(u + 1.5) + 1
+  // and the black side ends at j = -floor(1.5 - u) - 1. A pixel g is below the mid-level
+  // (outside + inside) / 2 exactly when 4 g < mid4.
+  const double u = (x0 - c) * in;
+  const int whiteFrom = u < 0.5 ? 2 : 3, blackTo = u > -0.5 ? -2 : -3;
   const int mid4 = outside2 + inside2;
-  const double u = (x0 - c) * in;  // x0 inwards of c, within half a pixel
-  for (int j = floorToInt(u + 1.5) + 1; j <= kHalfWindow; ++j)
-    if (4 * px(j) < mid4) return false;
-  for (int j = -kHalfWindow; j <= -floorToInt(1.5 - u) - 1; ++j)
-    if (4 * px(j) > mid4) return false;
   int sum = 0;
-  for (int j = -kHalfWindow; j <= kHalfWindow; ++j) sum += centre[j];
+  for (int j = -kHalfWindow; j <= kHalfWindow; ++j) {
+    const int g = px(j);
+    if ((j >= whiteFrom && 4 * g < mid4) || (j <= blackTo && 4 * g > mid4)) return false;
+    sum += g;
+  }
   const double white = (sum - (2 * kHalfWindow + 1) * outside) / contrast;
   const double edge = in > 0 ? c + (kHalfWindow + 0.5) - white : c - (kHalfWindow + 0.5) + white;
   if (!(std::abs(edge - x0) < 1.5)) return false;  // the window did not hold one clean edge
@@ -277,7 +251,7 @@ bool areaCrossing(const LineWindow& line, int in, const EdgeLevels& levels, doub
 
 // The crossing nearest x0 of the grey level with the mean of the two plateaus sampled 2.5
 // and 3.5 px either side of x0, the profile interpolated linearly between pixels.
-bool linearCrossing(const LineWindow& line, int in, const EdgeLevels& levels, double& x0) {
+bool linearCrossing(const PixelLine& line, int in, const EdgeLevels& levels, double& x0) {
   constexpr int kSearchPx = 3;
   double o1, o2, i1, i2;
   if (!line.interp(x0 - in * 2.5, o1) || !line.interp(x0 - in * 3.5, o2) ||
@@ -308,27 +282,19 @@ bool linearCrossing(const LineWindow& line, int in, const EdgeLevels& levels, do
 // near one class under blur), then the area estimate again if it now fits.
 bool refineCrossing(const PixelLine& line, int in, const EdgeLevels& levels, double roomPx, double& x0) {
   constexpr int kMaxPasses = 4;
-  LineWindow w;
-  // Re-reads the window when the estimate has moved towards its edge.
-  auto centred = [&] {
-    return (w.contains(roundToInt(x0) - LineWindow::kReach + 1) &&
-            w.contains(roundToInt(x0) + LineWindow::kReach - 1)) ||
-           w.load(line, roundToInt(x0));
-  };
-  if (!w.load(line, roundToInt(x0))) return false;
   // The area estimate alone when it settles: once more if it moved the window's centre.
   const double start = x0;
-  if (areaCrossing(w, in, levels, roomPx, x0)) {
+  if (areaCrossing(line, in, levels, roomPx, x0)) {
     if (roundToInt(x0) == roundToInt(start)) return true;
     const double first = x0;
-    if (centred() && areaCrossing(w, in, levels, roomPx, x0) && std::abs(x0 - first) < 0.25) return true;
+    if (areaCrossing(line, in, levels, roomPx, x0) && std::abs(x0 - first) < 0.25) return true;
   }
   x0 = start;
-  if (!w.load(line, roundToInt(x0)) || !linearCrossing(w, in, levels, x0) || !centred()) return false;
-  if (areaCrossing(w, in, levels, roomPx, x0)) return true;
+  if (!linearCrossing(line, in, levels, x0)) return false;
+  if (areaCrossing(line, in, levels, roomPx, x0)) return true;
   for (int pass = 1; pass < kMaxPasses; ++pass) {
     const double before = x0;
-    if (!linearCrossing(w, in, levels, x0) || !centred()) return false;
+    if (!linearCrossing(line, in, levels, x0)) return false;
     if (std::abs(x0 - before) < 0.02) break;
   }
   return true;
