@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <tuple>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -527,68 +529,119 @@ inline void tracePoint(const TraceFrame& k, const ArcTable& table, double x, dou
 }
 
 #if defined(__SSE2__)
-// A TraceFrame's numbers in both lanes, set up once per trace.
-struct TraceFramePair {
-  explicit TraceFramePair(const TraceFrame& k)
-      : c0(_mm_set1_pd(k.c0)), c1(_mm_set1_pd(k.c1)), c2(_mm_set1_pd(k.c2)), c3(_mm_set1_pd(k.c3)),
-        c4(_mm_set1_pd(k.c4)), c5(_mm_set1_pd(k.c5)), two_c0(_mm_set1_pd(2.0 * k.c0)), two_c2(_mm_set1_pd(2.0 * k.c2)),
-        scale(_mm_set1_pd(k.scale)), inv_scale(_mm_set1_pd(k.inv_scale)), ox(_mm_set1_pd(k.ox)), oy(_mm_set1_pd(k.oy)),
-        cx(_mm_set1_pd(k.cx)), cy(_mm_set1_pd(k.cy)), cs(_mm_set1_pd(k.cs)), sn(_mm_set1_pd(k.sn)),
-        inv_a(_mm_set1_pd(k.inv_a)), inv_b(_mm_set1_pd(k.inv_b)), inlier_px(_mm_set1_pd(k.inlier_px)) {}
-  __m128d c0, c1, c2, c3, c4, c5, two_c0, two_c2, scale, inv_scale, ox, oy, cx, cy, cs, sn, inv_a, inv_b, inlier_px;
+// N doubles in one vector (GCC vector extensions: the arithmetic operators work lane by
+// lane, with scalars taken as all lanes), and the matching lane masks.
+template <int N>
+struct Lanes;
+template <>
+struct Lanes<2> {
+  typedef double V __attribute__((vector_size(16)));
+  typedef std::int64_t M __attribute__((vector_size(16)));
+  typedef int I __attribute__((vector_size(8)));
+};
+template <>
+struct Lanes<4> {
+  typedef double V __attribute__((vector_size(32)));
+  typedef std::int64_t M __attribute__((vector_size(32)));
+  typedef int I __attribute__((vector_size(16)));
 };
 
-// tracePoint on two points at once, lane 0 the first: the same operations in the same
-// order, so bit for bit the same result. False, with nothing done, when a point is the
-// ellipse's centre; the caller then takes them one by one.
-inline bool tracePair(const TraceFrame& k, const TraceFramePair& kk, const ArcTable& table, __m128d x, __m128d y,
-                      double& total, std::size_t& inliers, unsigned char* traced) {
-  auto add = [](__m128d a, __m128d b) { return _mm_add_pd(a, b); };
-  auto sub = [](__m128d a, __m128d b) { return _mm_sub_pd(a, b); };
-  auto mul = [](__m128d a, __m128d b) { return _mm_mul_pd(a, b); };
-  const __m128d sign = _mm_set1_pd(-0.0), zero = _mm_setzero_pd();
-  auto abs = [&](__m128d a) { return _mm_andnot_pd(sign, a); };
-  // where(mask, a, b): a in the lanes of mask, b elsewhere.
-  auto where = [](__m128d mask, __m128d a, __m128d b) { return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b)); };
-  auto lane1 = [](__m128d a) { return _mm_cvtsd_f64(_mm_unpackhi_pd(a, a)); };
+// tracePoint on N points at once: the same expressions, evaluated lane by lane, so the
+// same operations in the same order and bit for bit the same result (fastAtan2's
+// branches become selections). False, with nothing done, when a point is the ellipse's
+// centre; the caller then takes the points one by one.
+template <int N>
+[[gnu::always_inline]] inline bool traceLanes(const TraceFrame& k, const ArcTable& table, const double* xs,
+                                              const double* ys, double& total, std::size_t& inliers,
+                                              unsigned char* traced) {
+  using V = typename Lanes<N>::V;
+  using M = typename Lanes<N>::M;
+  V x, y;
+  for (int i = 0; i < N; ++i) {
+    x[i] = xs[i];
+    y[i] = ys[i];
+  }
+  const V zero{};
+  const M magnitude = M{} + std::numeric_limits<std::int64_t>::max();  // |a| is a & magnitude
 
-  const __m128d u = mul(sub(x, kk.ox), kk.inv_scale), v = mul(sub(y, kk.oy), kk.inv_scale);
-  const __m128d f =
-      add(add(add(add(add(mul(mul(kk.c0, u), u), mul(mul(kk.c1, u), v)), mul(mul(kk.c2, v), v)), mul(kk.c3, u)),
-              mul(kk.c4, v)),
-          kk.c5);
-  const __m128d gu = add(add(mul(kk.two_c0, u), mul(kk.c1, v)), kk.c3);
-  const __m128d gv = add(add(mul(kk.c1, u), mul(kk.two_c2, v)), kk.c4);
-  const __m128d g2 = add(mul(gu, gu), mul(gv, gv));
-  if (_mm_movemask_pd(_mm_cmpgt_pd(g2, zero)) != 3) return false;
-  const __m128d ig = _mm_div_pd(_mm_set1_pd(1.0), _mm_sqrt_pd(g2));
-  const __m128d d = mul(mul(kk.scale, abs(f)), ig);
-  total += _mm_cvtsd_f64(d);
-  total += lane1(d);
-  const int inlier = _mm_movemask_pd(_mm_cmpngt_pd(d, kk.inlier_px));
-  if (inlier == 0) return true;
-  inliers += static_cast<std::size_t>((inlier & 1) + (inlier >> 1));  // no popcount call on baseline x86-64
+  const V u = (x - k.ox) * k.inv_scale, v = (y - k.oy) * k.inv_scale;
+  const V f = k.c0 * u * u + k.c1 * u * v + k.c2 * v * v + k.c3 * u + k.c4 * v + k.c5;
+  const V gu = 2.0 * k.c0 * u + k.c1 * v + k.c3;
+  const V gv = k.c1 * u + 2.0 * k.c2 * v + k.c4;
+  const V g2 = gu * gu + gv * gv;
+  for (int i = 0; i < N; ++i)
+    if (!(g2[i] > 0.0)) return false;
+  V root;
+  for (int i = 0; i < N; i += 2) {  // SSE2's square root, two lanes at a time
+    const __m128d pair = _mm_sqrt_pd(_mm_set_pd(g2[i + 1], g2[i]));
+    root[i] = _mm_cvtsd_f64(pair);
+    root[i + 1] = _mm_cvtsd_f64(_mm_unpackhi_pd(pair, pair));
+  }
+  const V ig = 1.0 / root;
+  const V d = k.scale * reinterpret_cast<V>(reinterpret_cast<M>(f) & magnitude) * ig;
+  for (int i = 0; i < N; ++i) total += d[i];
+  const M outlier = d > k.inlier_px;
 
-  const __m128d step = mul(mul(mul(f, ig), ig), kk.scale);
-  const __m128d dx = sub(sub(x, mul(step, gu)), kk.cx), dy = sub(sub(y, mul(step, gv)), kk.cy);
-  const __m128d ey = mul(add(mul(_mm_xor_pd(dx, sign), kk.sn), mul(dy, kk.cs)), kk.inv_b);
-  const __m128d ex = mul(add(mul(dx, kk.cs), mul(dy, kk.sn)), kk.inv_a);
-  // fastAtan2(ey, ex), its branches as selections.
-  const __m128d ax = abs(ex), ay = abs(ey);
-  const __m128d hi = _mm_max_pd(ay, ax), lo = _mm_min_pd(ay, ax);  // std::max(ax, ay), std::min(ax, ay)
-  const __m128d q = _mm_div_pd(lo, hi), q2 = mul(q, q);
-  __m128d r = add(_mm_set1_pd(0.05265332), mul(q2, _mm_set1_pd(-0.01172120)));
-  r = add(_mm_set1_pd(-0.11643287), mul(q2, r));
-  r = add(_mm_set1_pd(0.19354346), mul(q2, r));
-  r = add(_mm_set1_pd(-0.33262347), mul(q2, r));
-  r = mul(q, add(_mm_set1_pd(0.99997726), mul(q2, r)));
-  r = where(_mm_cmpgt_pd(ay, ax), sub(_mm_set1_pd(0.5 * kPi), r), r);
-  r = where(_mm_cmplt_pd(ex, zero), sub(_mm_set1_pd(kPi), r), r);
-  r = where(_mm_cmplt_pd(ey, zero), _mm_xor_pd(r, sign), r);
-  const __m128d t = _mm_and_pd(_mm_cmpgt_pd(hi, zero), r);  // 0 where hi is not positive
-  if (inlier & 1) traced[arcIndex(k, table, _mm_cvtsd_f64(t))] = 1;
-  if (inlier & 2) traced[arcIndex(k, table, lane1(t))] = 1;
+  const V step = f * ig * ig * k.scale;
+  const V dx = x - step * gu - k.cx, dy = y - step * gv - k.cy;
+  const V ey = (-dx * k.sn + dy * k.cs) * k.inv_b, ex = (dx * k.cs + dy * k.sn) * k.inv_a;
+  const V ax = reinterpret_cast<V>(reinterpret_cast<M>(ex) & magnitude);
+  const V ay = reinterpret_cast<V>(reinterpret_cast<M>(ey) & magnitude);
+  const V hi = ay > ax ? ay : ax, lo = ay < ax ? ay : ax;  // std::max(ax, ay), std::min(ax, ay)
+  const V q = lo / hi, q2 = q * q;
+  V r = q * (0.99997726 + q2 * (-0.33262347 + q2 * (0.19354346 + q2 * (-0.11643287 + q2 * (0.05265332 + q2 * -0.01172120)))));
+  r = ay > ax ? 0.5 * kPi - r : r;
+  r = ex < zero ? kPi - r : r;
+  r = ey < zero ? -r : r;
+  V t = hi > zero ? r : zero;
+  // arcIndex and ArcTable::arcAt lane by lane; their integer clamps become clamps in
+  // doubles before the conversion, which select the same integers.
+  using I = typename Lanes<N>::I;
+  t = t < zero ? t + kTwoPi : t;
+  const V at = t * (kArcSamples / kTwoPi);
+  V clamped = at > zero ? at : zero;
+  clamped = clamped < kArcSamples - 1 ? clamped : zero + (kArcSamples - 1);
+  const I sample = __builtin_convertvector(clamped, I);
+  V s0, s1;
+  for (int i = 0; i < N; ++i) {
+    s0[i] = table.s[static_cast<std::size_t>(sample[i])];
+    s1[i] = table.s[static_cast<std::size_t>(sample[i]) + 1];
+  }
+  const V arc = (s0 + (at - __builtin_convertvector(sample, V)) * (s1 - s0)) * k.arcs_per_px;
+  const I index = __builtin_convertvector(arc < k.arcs - 1 ? arc : zero + (k.arcs - 1), I);
+  for (int i = 0; i < N; ++i) {
+    if (outlier[i] != 0) continue;
+    ++inliers;
+    traced[index[i]] = 1;
+  }
   return true;
+}
+
+// Points i .. i + N - 1 (traceLanes, or one by one at the ellipse's centre).
+template <int N, class Points, class Get>
+[[gnu::always_inline]] inline void traceBlock(const TraceFrame& k, const ArcTable& table, const Points& points,
+                                              std::size_t i, Get get, double& total, std::size_t& inliers,
+                                              unsigned char* traced) {
+  double xs[N], ys[N];
+  for (int j = 0; j < N; ++j) std::tie(xs[j], ys[j]) = get(points[i + static_cast<std::size_t>(j)]);
+  if (traceLanes<N>(k, table, xs, ys, total, inliers, traced)) return;
+  for (int j = 0; j < N; ++j) tracePoint(k, table, xs[j], ys[j], total, inliers, traced);
+}
+
+// Four points at a time with AVX, where the processor has it (the same operations as
+// with SSE2, in wider registers). Returns how many points it took.
+template <class Points, class Get>
+__attribute__((target("avx"))) std::size_t traceByFour(const TraceFrame& k, const ArcTable& table,
+                                                        const Points& points, Get get, double& total,
+                                                        std::size_t& inliers, unsigned char* traced) {
+  std::size_t i = 0;
+  for (; i + 4 <= points.size(); i += 4) traceBlock<4>(k, table, points, i, get, total, inliers, traced);
+  return i;
+}
+
+bool hasAvx() {
+  static const bool avx = __builtin_cpu_supports("avx");
+  return avx;
 }
 #endif
 
@@ -613,14 +666,8 @@ void trace(const EllipseFit& fit, const Points& points, double inlier_px, cv::Si
   std::size_t inliers = 0;
   std::size_t i = 0;
 #if defined(__SSE2__)
-  const TraceFramePair pair(frame);
-  for (; i + 1 < points.size(); i += 2) {
-    const auto [x0, y0] = get(points[i]);
-    const auto [x1, y1] = get(points[i + 1]);
-    if (tracePair(frame, pair, table, _mm_set_pd(x1, x0), _mm_set_pd(y1, y0), total, inliers, traced.data())) continue;
-    tracePoint(frame, table, x0, y0, total, inliers, traced.data());
-    tracePoint(frame, table, x1, y1, total, inliers, traced.data());
-  }
+  if (hasAvx()) i = traceByFour(frame, table, points, get, total, inliers, traced.data());
+  for (; i + 2 <= points.size(); i += 2) traceBlock<2>(frame, table, points, i, get, total, inliers, traced.data());
 #endif
   for (; i < points.size(); ++i) {
     const auto [x, y] = get(points[i]);
