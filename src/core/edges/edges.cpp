@@ -8,7 +8,7 @@
 #include <iterator>
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
+#include <immintrin.h>
 #endif
 
 namespace imagepro {
@@ -36,33 +36,6 @@ inline EdgePixel sobelPixel(const std::uint8_t* up, const std::uint8_t* cur, con
           static_cast<std::int16_t>(gy)};
 }
 
-// Sixteen pixels at a time: load16 reads p[0] .. p[15], darker is the bytewise
-// minimum, and bit k of blackMask is set when byte k is black (zero).
-#if defined(__SSE2__)
-using Pixels16 = __m128i;
-inline Pixels16 load16(const std::uint8_t* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); }
-inline Pixels16 darker(Pixels16 a, Pixels16 b) { return _mm_min_epu8(a, b); }
-inline unsigned blackMask(Pixels16 v) {
-  return static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_setzero_si128())));
-}
-#else
-using Pixels16 = std::array<std::uint8_t, 16>;
-inline Pixels16 load16(const std::uint8_t* p) {
-  Pixels16 v;
-  std::copy_n(p, v.size(), v.begin());
-  return v;
-}
-inline Pixels16 darker(Pixels16 a, const Pixels16& b) {
-  for (std::size_t k = 0; k < a.size(); ++k) a[k] = std::min(a[k], b[k]);
-  return a;
-}
-inline unsigned blackMask(const Pixels16& v) {
-  unsigned mask = 0;
-  for (std::size_t k = 0; k < v.size(); ++k) mask |= static_cast<unsigned>(v[k] == 0) << k;
-  return mask;
-}
-#endif
-
 // An edge pixel as its eight bytes, so it is put together with two ORs: the fields
 // never share a byte, whatever the byte order.
 constexpr std::uint64_t bitsOf(const EdgePixel& p) { return std::bit_cast<std::uint64_t>(p); }
@@ -81,74 +54,60 @@ constexpr std::array<std::uint64_t, 512> kSobelByBlackNeighbourhood = [] {
   return table;
 }();
 
-// Eq. 2.25 on the sixteen pixels x .. x + 15 of a row (1 <= x, x + 16 < width), those
-// of `keep` only. A block of black pixels, the common case in a dark scene, costs one
-// load; any other block six loads.
-inline void laplaceBlock(const std::uint8_t* up, const std::uint8_t* cur, const std::uint8_t* down, int x, int y,
-                         unsigned keep, EdgeList& out) {
-  const unsigned black = blackMask(load16(cur + x));
-  if ((~black & keep) == 0) return;
-  const Pixels16 left = load16(cur + x - 1), right = load16(cur + x + 1);
-  // A black 4-neighbour makes the darkest of the four black.
-  const unsigned blackNeighbour =
-      blackMask(darker(darker(load16(up + x), load16(down + x)), darker(left, right)));
-  unsigned edge = ~black & keep & blackNeighbour;
-  if (edge == 0) return;
-  // The black pixels of the three rows over x - 1 .. x + 16 in three 21-bit fields:
-  // shifted right by k, each field's low three bits are the neighbourhood of pixel x + k.
-  auto row18 = [](const Pixels16& l, const Pixels16& r) { return std::uint64_t{blackMask(l) | blackMask(r) << 2}; };
-  const std::uint64_t rows = row18(load16(up + x - 1), load16(up + x + 1)) | row18(left, right) << 21 |
-                             row18(load16(down + x - 1), load16(down + x + 1)) << 42;
-  const std::uint64_t row = bitsOf(EdgePixel{0, static_cast<std::int16_t>(y), 0, 0});
-  while (edge != 0) {
-    const int k = std::countr_zero(edge);
-    edge &= edge - 1;
-    const std::uint64_t w = rows >> k;
-    const std::uint64_t gradient = kSobelByBlackNeighbourhood[(w & 0x7U) | (w >> 18 & 0x38U) | (w >> 36 & 0x1C0U)];
-    out.push_back(std::bit_cast<EdgePixel>(gradient | row | bitsOf(EdgePixel{static_cast<std::int16_t>(x + k), 0, 0, 0})));
-  }
+// Eq. 2.25 on one row, pixel by pixel. Rows above/below are the row itself at the
+// image border, and the pixel itself stands in for a missing left/right neighbour: a
+// white pixel, so never black.
+inline void laplacePixel(const std::uint8_t* up, const std::uint8_t* cur, const std::uint8_t* down, int x, int y,
+                         int width, EdgeList& out) {
+  if (cur[x] == 0) return;
+  const int l = x > 0 ? x - 1 : x;
+  const int r = x < width - 1 ? x + 1 : x;
+  if (up[x] == 0 || down[x] == 0 || cur[l] == 0 || cur[r] == 0) out.push_back(sobelPixel(up, cur, down, x, y, width));
 }
 
-// Eq. 2.25 on one row. Rows above/below are the row itself at the image border, and
-// the pixel itself stands in for a missing left/right neighbour: a white pixel, so
-// never black.
-void laplaceRow(const std::uint8_t* up, const std::uint8_t* cur, const std::uint8_t* down, int y, int width,
-                EdgeList& out) {
-  auto scalar = [&](int x) {
-    if (cur[x] == 0) return;
-    const int l = x > 0 ? x - 1 : x;
-    const int r = x < width - 1 ? x + 1 : x;
-    if (up[x] == 0 || down[x] == 0 || cur[l] == 0 || cur[r] == 0) out.push_back(sobelPixel(up, cur, down, x, y, width));
-  };
-  constexpr int kBlock = 16;
-  // Blocks read cur[x - 1] .. cur[x + 16], so they cover columns 1 .. width - 2; the
-  // last one overlaps its predecessor and keeps only the columns not yet done.
-  if (width < kBlock + 2) {
-    for (int x = 0; x < width; ++x) scalar(x);
-    return;
-  }
-  scalar(0);
-  const int last = width - 1 - kBlock;
-  int x = 1;
-  for (; x <= last; x += kBlock) laplaceBlock(up, cur, down, x, y, 0xFFFFU, out);
-  if (x < width - 1) laplaceBlock(up, cur, down, last, y, 0xFFFFU << (x - last) & 0xFFFFU, out);
-  scalar(width - 1);
+#if defined(__SSE2__)
+namespace sse2 {
+#include "core/edges/laplace_rows.inc"
+}  // namespace sse2
+
+#if defined(__GNUC__) && !defined(__clang__)
+#define LAPLACE_AVX2 1
+#pragma GCC push_options
+#pragma GCC target("avx2,bmi,bmi2")
+namespace avx2 {
+#include "core/edges/laplace_rows.inc"
+}  // namespace avx2
+#pragma GCC pop_options
+#undef LAPLACE_AVX2
+
+bool hasAvx2() {
+  static const bool avx2 =
+      __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
+  return avx2;
 }
+#else
+bool hasAvx2() { return false; }
+#endif
+#endif
 
 }  // namespace
 
 Status detectEdgesLaplace(const cv::Mat& binary, EdgeList& out) {
   out.clear();
   if (!usableBinary(binary)) return Status::EmptyFrame;
-  const int width = binary.cols;
-  const int height = binary.rows;
-  const std::size_t step = binary.step;
-  for (int y = 0; y < height; ++y) {
-    const std::uint8_t* cur = binary.data + step * static_cast<std::size_t>(y);
-    const std::uint8_t* up = y > 0 ? cur - step : cur;
-    const std::uint8_t* down = y < height - 1 ? cur + step : cur;
-    laplaceRow(up, cur, down, y, width, out);
+#if defined(__SSE2__)
+  if (hasAvx2())
+    avx2::laplaceRows(binary, out);
+  else
+    sse2::laplaceRows(binary, out);
+#else
+  for (int y = 0; y < binary.rows; ++y) {
+    const std::uint8_t* cur = binary.ptr<std::uint8_t>(y);
+    const std::uint8_t* up = y > 0 ? binary.ptr<std::uint8_t>(y - 1) : cur;
+    const std::uint8_t* down = y < binary.rows - 1 ? binary.ptr<std::uint8_t>(y + 1) : cur;
+    for (int x = 0; x < binary.cols; ++x) laplacePixel(up, cur, down, x, y, binary.cols, out);
   }
+#endif
   return out.empty() ? Status::NoEdges : Status::Ok;
 }
 
