@@ -54,9 +54,9 @@ constexpr std::array<std::uint64_t, 512> kSobelByBlackNeighbourhood = [] {
   return table;
 }();
 
-// Eq. 2.25 on one row, pixel by pixel. Rows above/below are the row itself at the
-// image border, and the pixel itself stands in for a missing left/right neighbour: a
-// white pixel, so never black.
+// Eq. 2.25 on pixel x of a row. Rows above/below are the row itself at the image
+// border, and the pixel itself stands in for a missing left/right neighbour: a white
+// pixel, so never black.
 inline void laplacePixel(const std::uint8_t* up, const std::uint8_t* cur, const std::uint8_t* down, int x, int y,
                          int width, EdgeList& out) {
   if (cur[x] == 0) return;
