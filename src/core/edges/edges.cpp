@@ -1,5 +1,7 @@
 #include "core/edges/edges.h"
 
+#include "core/common/simd_level.h"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -80,11 +82,7 @@ namespace avx2 {
 #pragma GCC pop_options
 #undef LAPLACE_AVX2
 
-bool hasAvx2() {
-  static const bool avx2 =
-      __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
-  return avx2;
-}
+bool hasAvx2() { return simdLevel() == SimdLevel::Avx2; }
 #else
 bool hasAvx2() { return false; }
 #endif
