@@ -7,6 +7,7 @@
 
 #include "core/common/atomic_file.h"
 #include "core/settings/enum_names.h"
+#include "support/file_size_limit.h"
 
 namespace imagepro {
 namespace {
@@ -142,6 +143,36 @@ TEST(Settings, SaveAndLoadFile) {
   EXPECT_NE(err.find("s.json"), std::string::npos);
   EXPECT_NE(err.find("pattern.rows"), std::string::npos);
   EXPECT_EQ(loadSettings((dir / "none.json").string(), b, err), Status::FileNotFound);
+}
+
+// A save that fails half-way (the disk full) reports the file and leaves the settings
+// saved before exactly as they were.
+TEST(Settings, FailedSaveKeepsThePreviousFile) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / "settings_full";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string path = (dir / "s.json").string();
+  Settings before;
+  before.pattern.rows = 9;
+  std::string err, saved;
+  ASSERT_EQ(saveSettings(path, before, err), Status::Ok) << err;
+  ASSERT_TRUE(readWholeFile(path, saved, err)) << err;
+  Settings after;
+  after.pattern.rows = 11;
+  {
+    test::FileSizeLimit limit(saved.size() / 2);
+    ASSERT_TRUE(limit.active());
+    EXPECT_NE(saveSettings(path, after, err), Status::Ok);
+  }
+  EXPECT_NE(err.find("s.json"), std::string::npos) << err;
+  std::string now;
+  ASSERT_TRUE(readWholeFile(path, now, err)) << err;
+  EXPECT_EQ(now, saved);
+  Settings loaded;
+  ASSERT_EQ(loadSettings(path, loaded, err), Status::Ok) << err;
+  EXPECT_EQ(loaded.pattern.rows, 9);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);  // no temporary left
 }
 
 TEST(Settings, ShippedDefaultFileMatchesDefaults) {
