@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cli/command.h"
+#include "cli/image_inputs.h"
 #include "core/common/pose_csv.h"
 #include "core/connectivity/connectivity.h"
 #include "core/edges/edges.h"
@@ -14,7 +15,6 @@
 #include "core/segmentation/histogram.h"
 #include "core/segmentation/threshold.h"
 #include "core/settings/enum_names.h"
-#include "core/source/image_file.h"
 
 namespace imagepro::cli {
 namespace {
@@ -32,7 +32,7 @@ struct Stage {
 };
 
 Status detectImage(const Settings& s, const std::string& file, Stage& st, std::string& problem) {
-  Status status = readGreyImage(file, st.grey, problem);
+  Status status = readGreyImageQuietly(file, st.grey, problem);
   if (!ok(status)) return status;
   const PipelineOptions& p = s.pipeline;
   computeHistogram(st.grey, st.hist);
@@ -102,9 +102,12 @@ int run(const Args& args) {
   if (csv) std::printf("frame,status,cx,cy,a,b,angle_deg,fit_error,method\n");
   Stage st;
   cv::Mat overlay;
-  for (const auto& file : args.positionals()) {
-    std::string problem;
-    const Status status = detectImage(settings, file, st, problem);
+  UniqueNames overlayNames;
+  for (const ImageInput& input : expandImageInputs(args.positionals())) {
+    const std::string& file = input.path;
+    std::string problem = input.error;
+    if (!ok(input.status)) st.grey.release();
+    const Status status = ok(input.status) ? detectImage(settings, file, st, problem) : input.status;
     const std::string name(statusName(status));
     const bool found = status == Status::Ok || status == Status::AmbiguousTarget;
     if (!found) {
@@ -125,7 +128,7 @@ int run(const Args& args) {
     }
     if (overlayDir && !st.grey.empty()) {
       drawOverlay(settings, st, status, overlay);
-      const std::filesystem::path out = *overlayDir / (std::filesystem::path(file).stem().string() + ".png");
+      const std::filesystem::path out = *overlayDir / (overlayNames.take(std::filesystem::path(file).stem().string()) + ".png");
       bool written = false;
       try {
         written = cv::imwrite(out.string(), overlay);
@@ -146,17 +149,23 @@ const CommandRegistration kRegistration{{
     "finds the target's ellipse (the settings' pipeline.threshold, edge_method,\n"
     "connectivity and ellipse). The target is the accepted ellipse that holds the\n"
     "target's two spots; without one, the best ellipse (lowest fit error, or highest\n"
-    "Bennett score) unless ellipse.require_target_spots.\n"
+    "Bennett score) unless ellipse.require_target_spots. IMAGES are image files,\n"
+    "folders (their images in natural order) or .txt lists of paths.\n"
     "  --method M    bennett or direct-fit (default: the settings' ellipse method)\n"
     "  --format F    csv (default): frame,status,cx,cy,a,b,angle_deg,fit_error,method\n"
     "                with status ok, AmbiguousTarget (one row per target) or the\n"
     "                error's name and the ellipse columns empty; text: one line each\n"
-    "  --overlay DIR write DIR/<image name>.png: accepted ellipses in yellow, the\n"
-    "                target in green (red when ambiguous), its spots in blue\n"
+    "  --overlay DIR write DIR/<name>.png for every image read: accepted ellipses in\n"
+    "                yellow, the target in green (red when ambiguous), its spots in\n"
+    "                blue. <name> is the image's file name without extension, with\n"
+    "                _2, _3 ... added when an earlier image of the run had the same\n"
+    "                name (e.g. from another folder), so no overlay replaces another\n"
     "cx, cy, a, b: centre and semi-axes in pixels; angle_deg: major axis from +u\n"
     "towards +v; fit_error: E_rel (eq. 2.42) or the mean Sampson distance in pixels,\n"
-    "as the settings' ellipse.accept_rule. An image that cannot be read is reported\n"
-    "in its row and the others are still processed.",
+    "as the settings' ellipse.accept_rule. An image that cannot be read (missing,\n"
+    "corrupt, a folder or list without images) is reported in its row (FileNotFound,\n"
+    "FileUnreadable) and the others are still processed; the exit status is 0 unless\n"
+    "the command line, the settings or --overlay is wrong.",
     {},
     run,
 }};

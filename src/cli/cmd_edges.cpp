@@ -1,6 +1,7 @@
 // imagepro-cli edges: thresholds each image, detects its edges and groups them into
 // connected paths (thesis 2.3-2.5); writes the binary, edge and path images for
-// inspection and prints one CSV row per image.
+// inspection and prints one CSV row per image. An image that cannot be read or
+// written is named on stderr too, and the exit status is 1.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -8,13 +9,13 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cli/command.h"
+#include "cli/image_inputs.h"
 #include "core/common/pose_csv.h"
 #include "core/connectivity/connectivity.h"
 #include "core/edges/edges.h"
 #include "core/segmentation/histogram.h"
 #include "core/segmentation/threshold.h"
 #include "core/settings/enum_names.h"
-#include "core/source/image_file.h"
 
 namespace imagepro::cli {
 namespace {
@@ -84,12 +85,19 @@ int run(const Args& args) {
   EdgeWorkspace edgeWs;
   Paths paths;
   ConnectivityWorkspace connectivityWs;
-  for (const auto& file : args.positionals()) {
+  UniqueNames outNames;
+  bool failed = false;
+  for (const ImageInput& input : expandImageInputs(args.positionals())) {
+    const std::string& file = input.path;
     Row row;
-    std::string error;
+    std::string error = input.error;
     bool binaryReady = false, edgesReady = false;
-    row.status = readGreyImage(file, grey, error);
-    if (ok(row.status)) {
+    row.status = ok(input.status) ? readGreyImageQuietly(file, grey, error) : input.status;
+    if (!ok(row.status)) {
+      failed = true;
+      std::fflush(stdout);
+      std::fprintf(stderr, "imagepro-cli edges: %s: %s\n", std::string(statusName(row.status)).c_str(), error.c_str());
+    } else {
       computeHistogram(grey, hist);
       int t = 0;
       row.status = computeThreshold(thresholdOptions, hist, t);
@@ -109,7 +117,7 @@ int run(const Args& args) {
       }
     }
     if (outDir && binaryReady) {
-      const std::string stem = std::filesystem::path(file).stem().string();
+      const std::string stem = outNames.take(std::filesystem::path(file).stem().string());
       bool written = writePng(*outDir / (stem + "_binary.png"), binary);
       if (edgesReady) {
         edgeImage.create(binary.size(), CV_8UC1);
@@ -119,12 +127,18 @@ int run(const Args& args) {
         written = writePng(*outDir / (stem + "_edges.png"), edgeImage) && written;
         written = writePng(*outDir / (stem + "_paths.png"), pathImage) && written;
       }
-      if (!written && (ok(row.status) || row.status == Status::NoEdges)) row.status = Status::FileNotWritable;
+      if (!written) {
+        failed = true;
+        if (ok(row.status) || row.status == Status::NoEdges) row.status = Status::FileNotWritable;
+        std::fflush(stdout);
+        std::fprintf(stderr, "imagepro-cli edges: FileNotWritable: %s: cannot write %s_*.png into %s\n", file.c_str(),
+                     stem.c_str(), outDir->string().c_str());
+      }
     }
     std::printf("%s,%s,%s,%s,%s,%s\n", csvField(file).c_str(), std::string(statusName(row.status)).c_str(),
                 row.threshold.c_str(), row.edgePixels.c_str(), row.paths.c_str(), row.longestPath.c_str());
   }
-  return 0;
+  return failed ? 1 : 0;
 }
 
 const CommandRegistration kRegistration{{
@@ -132,18 +146,25 @@ const CommandRegistration kRegistration{{
     "threshold, edge-detect and connect each image; write PNGs and a CSV summary",
     "usage: imagepro-cli edges [--config FILE] [--out DIR] [--method M] [--connectivity C] IMAGES...\n\n"
     "For each image: the threshold of the settings (thesis 2.3), binarization (eq. 2.1),\n"
-    "edge detection (2.4) and connectivity analysis (2.5). Prints one CSV row per image:\n"
+    "edge detection (2.4) and connectivity analysis (2.5). IMAGES are image files,\n"
+    "folders (their images in natural order) or .txt lists of paths. Prints one CSV row\n"
+    "per image:\n"
     "  frame,status,threshold,edge_pixels,paths,longest_path\n"
     "status is ok or the error's name; a column is empty when its stage did not run\n"
     "(an unreadable file, no threshold). NoEdges rows carry 0 edge pixels and paths.\n"
     "  --out DIR         also write <name>_binary.png, <name>_edges.png (edge pixels white\n"
     "                    on black) and <name>_paths.png (each connected path its own colour\n"
     "                    on black) into DIR, created if missing; <name> is the image's file\n"
-    "                    name without extension. A failed write gives FileNotWritable.\n"
+    "                    name without extension, with _2, _3 ... added when an earlier image\n"
+    "                    of the run had the same name (e.g. from another folder).\n"
     "  --method M        laplace or sobel-thinning (default: the settings' edge method)\n"
     "  --connectivity C  cn0 or cn1 (default: the settings' connectivity method)\n"
-    "Images that fail are reported in their row and the others are still processed; the\n"
-    "exit status is 0 unless the command line, the settings or --out is wrong.",
+    "An image that cannot be read (missing, corrupt, a folder or list without images)\n"
+    "or whose PNGs cannot be written also gets one line on stderr naming it and the\n"
+    "reason (status FileNotWritable for a failed write); the others are still processed\n"
+    "and the exit status is 1. Exit status 2: a wrong command line; 1: wrong settings,\n"
+    "--out not creatable, or such a failed image; else 0 (an image without a threshold\n"
+    "or without edges is a result, reported in its row).",
     {},
     run,
 }};

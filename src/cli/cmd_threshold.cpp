@@ -1,13 +1,14 @@
 // imagepro-cli threshold: the threshold of each image (thesis 2.3) by the chosen
-// method, one row per image; unreadable images get their error and the rest go on.
+// method, one row per image; an unreadable image gets its row and a line on stderr,
+// the rest go on, and the exit status says that one failed.
 #include <cstdio>
 
 #include "cli/command.h"
+#include "cli/image_inputs.h"
 #include "core/common/pose_csv.h"
 #include "core/segmentation/histogram.h"
 #include "core/segmentation/threshold.h"
 #include "core/settings/enum_names.h"
-#include "core/source/image_file.h"
 
 namespace imagepro::cli {
 namespace {
@@ -43,25 +44,34 @@ int run(const Args& args) {
   if (csv) std::printf("image,status,threshold\n");
   cv::Mat grey;
   Histogram hist;
-  for (const auto& path : args.positionals()) {
+  bool unreadable = false;
+  for (const ImageInput& input : expandImageInputs(args.positionals())) {
     int t = 0;
-    std::string problem;
-    Status status = readGreyImage(path, grey, problem);
-    if (ok(status)) {
+    std::string problem = input.error;
+    Status status = input.status;
+    if (ok(status)) status = readGreyImageQuietly(input.path, grey, problem);
+    const bool loaded = ok(status);
+    if (loaded) {
       computeHistogram(grey, hist);
       status = computeThreshold(options, hist, t);
       problem = statusMessage(status);
-    }
-    const std::string value = ok(status) ? std::to_string(t) : std::string();
-    if (csv) {
-      std::printf("%s,%s,%s\n", csvField(path).c_str(), std::string(statusName(status)).c_str(), value.c_str());
-    } else if (ok(status)) {
-      std::printf("%s: %d\n", path.c_str(), t);
     } else {
-      std::printf("%s: %s (%s)\n", path.c_str(), std::string(statusName(status)).c_str(), problem.c_str());
+      unreadable = true;
+      std::fflush(stdout);
+      std::fprintf(stderr, "imagepro-cli threshold: %s: %s\n", std::string(statusName(status)).c_str(), problem.c_str());
+    }
+    const std::string name(statusName(status));
+    if (csv) {
+      std::printf("%s,%s,%s\n", csvField(input.path).c_str(), name.c_str(), ok(status) ? std::to_string(t).c_str() : "");
+    } else if (ok(status)) {
+      std::printf("%s: %d\n", input.path.c_str(), t);
+    } else if (loaded) {
+      std::printf("%s: %s (%s)\n", input.path.c_str(), name.c_str(), problem.c_str());
+    } else {
+      std::printf("%s: %s\n", input.path.c_str(), name.c_str());  // the reason is on stderr
     }
   }
-  return 0;
+  return unreadable ? 1 : 0;
 }
 
 const CommandRegistration kRegistration{{
@@ -71,14 +81,17 @@ const CommandRegistration kRegistration{{
     "Prints the threshold t of each image (thesis 2.3); binarization makes the pixels\n"
     "above t white (eq. 2.1). at-orig and at-mod are Kittler and Illingworth's minimum\n"
     "error threshold in its original and incremental forms: the same t, different speed.\n"
+    "IMAGES are image files, folders (their images in natural order) or .txt lists of paths.\n"
     "  --method M   manual, at-orig or at-mod (default: the settings' threshold method)\n"
     "  --value N    the manual threshold, 0..255; selects manual when --method is not given\n"
-    "  --format F   text (default): \"IMAGE: t\", or the error's name and what it means;\n"
+    "  --format F   text (default): \"IMAGE: t\", or the error's name (and what it means);\n"
     "               csv: image,status,threshold with status ok or the error's name and\n"
     "               the threshold empty unless ok\n"
-    "An image that cannot be read or has no threshold (e.g. a flat image) is reported\n"
-    "in its row and the other images are still processed; the exit status is 0 unless\n"
-    "the command line or the settings are wrong.",
+    "Every image gets its row. One that cannot be read (missing, corrupt, a folder or\n"
+    "list without images) also gets one line on stderr naming it and the reason, the\n"
+    "others are still processed, and the exit status is 1. An image without a threshold\n"
+    "(e.g. a flat one) is a result, reported in its row only. Exit status 2: a wrong\n"
+    "command line; 1: wrong settings or an image that could not be read; else 0.",
     {},
     run,
 }};

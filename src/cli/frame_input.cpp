@@ -1,11 +1,10 @@
 #include "cli/frame_input.h"
 
 #include <cstdio>
-#include <filesystem>
 
+#include "cli/image_inputs.h"
 #include "core/camera/camera_settings.h"
 #include "core/camera/video_file.h"
-#include "core/source/image_file.h"
 #include "core/source/sources.h"
 
 namespace imagepro::cli {
@@ -48,6 +47,23 @@ class EndAfterCameraFailure final : public FrameSource {
  private:
   std::unique_ptr<FrameSource> inner_;
   bool failed_ = false;
+};
+
+// Image files decoded without the decoders' own stderr lines: the frame's row and
+// lastError() name the problem once.
+class QuietDecoding final : public FrameSource {
+ public:
+  explicit QuietDecoding(std::unique_ptr<FrameSource> inner) : inner_(std::move(inner)) {}
+  Status next(Frame& out) override {
+    const DecoderMessagesSilenced quiet;
+    return inner_->next(out);
+  }
+  std::string lastError() const override { return inner_->lastError(); }
+  double frameRateHz() const override { return inner_->frameRateHz(); }
+  std::string describe() const override { return inner_->describe(); }
+
+ private:
+  std::unique_ptr<FrameSource> inner_;
 };
 
 // "640x480" -> width and height.
@@ -110,21 +126,13 @@ std::unique_ptr<FrameSource> openFrameInput(const Args& args, const Settings& se
   }
   if (args.positionals().empty()) throw UsageError("no input: give image files, a folder, or --virtual");
   std::vector<std::string> paths;
-  for (const std::string& p : args.positionals()) {
-    std::error_code ec;
-    const bool folder = std::filesystem::is_directory(p, ec);
-    const bool list = !folder && std::filesystem::path(p).extension() == ".txt";
-    if (folder || list) {
-      std::vector<std::string> more;
-      std::string error;
-      if (!ok(listImageSequence(p, more, error))) throw InputError(error);
-      paths.insert(paths.end(), more.begin(), more.end());
-    } else {
-      // A missing or corrupt image is reported in its own row; the others go on.
-      paths.push_back(p);
-    }
+  for (ImageInput& input : expandImageInputs(args.positionals())) {
+    // A folder or list that names no image stops the command; a missing or corrupt
+    // image is reported in its own row and the others go on.
+    if (!ok(input.status)) throw InputError(input.error);
+    paths.push_back(std::move(input.path));
   }
-  return makeFileSource(std::move(paths));
+  return std::make_unique<QuietDecoding>(makeFileSource(std::move(paths)));
 }
 
 }  // namespace imagepro::cli

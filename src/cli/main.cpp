@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <opencv2/core/utils/logger.hpp>
 
 #include "cli/command.h"
 
@@ -23,6 +24,8 @@ void printOverview() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Every problem is reported once, as our own line; OpenCV's log would add its own.
+  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
   if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0 ||
       std::strcmp(argv[1], "help") == 0) {
     printOverview();
