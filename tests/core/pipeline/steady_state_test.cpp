@@ -1,0 +1,78 @@
+// Steady state of the whole frame loop: once the engine's buffers have grown to a
+// frame's size, processing a frame allocates nothing at all — no operator new and no
+// malloc underneath (cv::Mat buffers, OpenCV's own scratch) — full frame or tracked,
+// whether the target is found or lost. Counts every allocation of this process.
+#include <gtest/gtest.h>
+
+#include <opencv2/core/utility.hpp>
+
+#include "cli/allocation_counter.h"
+#include "core/pipeline/engine.h"
+#include "core/source/bench_scene.h"
+
+namespace imagepro {
+namespace {
+
+constexpr int kFrames = 40;
+
+const std::vector<Frame>& benchFrames() {
+  static const std::vector<Frame> frames = renderBenchSequence(benchSceneSettings({640, 480}), kFrames);
+  return frames;
+}
+
+struct Counted {
+  std::uint64_t allocations = 0;
+  int found = 0;
+};
+
+// Warms the engine up on the frames twice, then counts a third pass.
+Counted countSteadyState(const Settings& settings, const std::vector<Frame>& frames) {
+  Engine engine(settings);
+  FrameResult r;
+  for (int pass = 0; pass < 2; ++pass)
+    for (const Frame& f : frames) engine.process(f, r);
+  Counted c;
+  cli::startCountingAllocations();
+  for (const Frame& f : frames) {
+    engine.process(f, r);
+    c.found += ok(r.status) ? 1 : 0;
+  }
+  c.allocations = cli::stopCountingAllocations();
+  return c;
+}
+
+class SteadyState : public testing::TestWithParam<std::tuple<TrackingMode, ContourMode>> {};
+
+TEST_P(SteadyState, AFrameAllocatesNothing) {
+  cv::setNumThreads(1);  // OpenCV's thread pool would allocate per task
+  Settings s = benchSceneSettings({640, 480});
+  s.pipeline.tracking.mode = std::get<0>(GetParam());
+  s.pipeline.reconstruction.contour_mode = std::get<1>(GetParam());
+  const Counted c = countSteadyState(s, benchFrames());
+  EXPECT_GE(c.found, kFrames * 3 / 4);  // the pipeline really ran to a pose (the scene hides the target now and then)
+  EXPECT_EQ(c.allocations, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, SteadyState,
+                         testing::Combine(testing::Values(TrackingMode::Off, TrackingMode::Corners2D,
+                                                          TrackingMode::Parameters3D),
+                                          testing::Values(ContourMode::SubPixel, ContourMode::FullPathMod,
+                                                          ContourMode::EightPointsMod)));
+
+// Frames without the target (an empty frame, then one of clutter only) in between:
+// the error paths allocate nothing either.
+TEST(SteadyStateErrors, LostAndEmptyFramesAllocateNothing) {
+  cv::setNumThreads(1);
+  std::vector<Frame> frames = benchFrames();
+  for (std::size_t i = 5; i < frames.size(); i += 7) frames[i].image = cv::Mat::zeros(frames[i].image.size(), CV_8UC1);
+  for (std::size_t i = 9; i < frames.size(); i += 11)
+    frames[i].image = cv::Mat(frames[i].image.size(), CV_8UC1, cv::Scalar(255));
+  Settings s = benchSceneSettings({640, 480});
+  s.pipeline.tracking.mode = TrackingMode::Corners2D;
+  const Counted c = countSteadyState(s, frames);
+  EXPECT_LT(c.found, static_cast<int>(frames.size()));
+  EXPECT_EQ(c.allocations, 0u);
+}
+
+}  // namespace
+}  // namespace imagepro
