@@ -238,34 +238,20 @@ bool holdsDarkPath(const Ellipse& e, std::size_t self, const EllipseWorkspace& w
   return false;
 }
 
-}  // namespace
-
-bool fitAccepted(const EllipseOptions& o, const EllipseFit& fit, const EllipseTrace& trace,
-                 double min_traced_fraction) {
-  return errorAccepted(o, fit, trace.mean_sampson_px) &&
-         trace.traced >= min_traced_fraction * trace.observable - 1e-12 && trace.traced >= o.min_arc_fraction;
-}
-
-Status detectEllipses(const EllipseOptions& o, const Paths& paths, cv::Size image, EllipseWorkspace& ws,
-                      std::vector<TargetDetection>& out) {
-  out.clear();
-  summariseAll(paths, ws);
-  for (std::size_t i = 0; i < ws.paths.size(); ++i) {
-    fitPath(o, paths, i, image, ws);
-    if (traceCandidate(o, paths.path(i), image, ws.paths[i])) out.push_back(toDetection(ws.paths[i], i));
-  }
-  return out.empty() ? Status::NoTarget : Status::Ok;
-}
-
-Status fitEllipseRobust(const EllipseOptions& o, std::span<const EdgePixel> path, cv::Size image,
-                        EllipseWorkspace& ws, EllipseFit& fit, EllipseTrace& trace) {
+// The consensus ellipse of a path: the six-point fit whose ellipse the path traces most,
+// refitted twice on its inliers (left in ws.inliers).
+Status consensusFit(const EllipseOptions& o, std::span<const EdgePixel> path, EllipseWorkspace& ws,
+                    EllipseFit& fit) {
+  ++ws.consensus_fits;
   const std::size_t n = path.size();
   if (n < 6) return Status::TooFewPoints;
   ws.rng.seed(static_cast<std::mt19937::result_type>(n));  // reproducible per path
   std::uniform_int_distribution<std::size_t> pick(0, n - 1);
   const double inlier_px = o.trace_inlier_px;
-  // Candidates are scored on an evenly spread subset of the path.
-  const std::size_t stride = std::max<std::size_t>(1, n / kConsensusScorePoints);
+  // Candidates are scored on an evenly spread subset of the path. The stride is odd:
+  // CN1 lists a contour breadth first, alternating between its two fronts, so an even
+  // stride would score one side of the contour only.
+  const std::size_t stride = std::max<std::size_t>(1, n / kConsensusScorePoints) | 1;
   const std::size_t scored = (n + stride - 1) / stride;
   std::size_t best_count = 0;
   int best_covered = 0;
@@ -303,8 +289,12 @@ Status fitEllipseRobust(const EllipseOptions& o, std::span<const EdgePixel> path
       best_covered = covered;
       best_count = count;
       best = trial;
-      // Iterations for a 99 % chance of one all-inlier sample at this inlier share.
-      const double clean = std::pow(static_cast<double>(count) / scored, 6.0);
+      // Iterations for a 99 % chance of one all-inlier sample at this share, taken as
+      // the smaller of the inlier share and the share of the ellipse traced: a wrong
+      // ellipse through part of the arc and an occluder's edge gathers many inliers,
+      // and stopping on their share alone ends the search before the true one is drawn.
+      const double share = std::min(static_cast<double>(count) / scored, covered / 64.0);
+      const double clean = std::pow(share, 6.0);
       if (clean >= 1.0) break;
       if (clean > 0.0) needed = std::log(0.01) / std::log1p(-clean);
     }
@@ -324,7 +314,121 @@ Status fitEllipseRobust(const EllipseOptions& o, std::span<const EdgePixel> path
     best = trial;
   }
   fit = best;
-  traceEllipse(fit, ws.inliers, inlier_px, image, trace);
+  return Status::Ok;
+}
+
+// Could this path, which failed the plain fit, be an occluded target? Its plain fit
+// gave an ellipse, and that ellipse, grown by kOccludedReach, holds a pair of dark paths
+// that could be the spots: of similar size, as far apart as the spots are for their
+// size (rf / r0, foreshortened by up to kSpotPairSlack either way), and not the spots
+// of a target found already. Clutter paths that only pass mayHoldSpots (their box spans
+// the target) fit ellipses elsewhere, or hold the found target's spots; this keeps the
+// consensus fit to the paths that can be a target, none in the common frame.
+constexpr double kOccludedReach = 1.5;
+constexpr double kSpotPairSlack = 2.5;
+
+bool mayBeOccludedTarget(const TargetGeometry& g, std::size_t i, const EllipseWorkspace& ws,
+                         const std::vector<TargetDetection>& found) {
+  const PathSummary& s = ws.paths[i];
+  if (!ok(s.fit_status)) return false;
+  const Ellipse& e = s.fit.ellipse;
+  const double expected = g.spot_radius_mm / g.radius_mm * std::sqrt(e.a * e.b);
+  auto claimed = [&](std::size_t j) {
+    return std::any_of(found.begin(), found.end(), [&](const TargetDetection& d) {
+      return d.spot_paths[0] == j || d.spot_paths[1] == j;
+    });
+  };
+  auto candidate = [&](std::size_t j) {
+    const PathSummary& t = ws.paths[j];
+    return j != i && t.rms_radius >= expected / (2.0 * kSpotSizeFactor) &&
+           t.rms_radius <= expected * 2.0 * kSpotSizeFactor && unitFrame(e, t.cx, t.cy).norm() < kOccludedReach &&
+           !claimed(j);
+  };
+  const double ratio = g.spot_offset_mm / g.spot_radius_mm;
+  for (std::size_t a = 0; a < ws.dark.size(); ++a) {
+    if (!candidate(ws.dark[a])) continue;
+    const PathSummary& p = ws.paths[ws.dark[a]];
+    for (std::size_t b = a + 1; b < ws.dark.size(); ++b) {
+      if (!candidate(ws.dark[b])) continue;
+      const PathSummary& q = ws.paths[ws.dark[b]];
+      if (std::max(p.rms_radius, q.rms_radius) > kSpotSizeFactor * std::min(p.rms_radius, q.rms_radius)) continue;
+      const double apart = std::hypot(p.cx - q.cx, p.cy - q.cy) / (0.5 * (p.rms_radius + q.rms_radius));
+      if (apart >= ratio / kSpotPairSlack && apart <= ratio * kSpotPairSlack) return true;
+    }
+  }
+  return false;
+}
+
+// The pixels of other white paths that lie on `fit`'s ellipse (within the inlier band,
+// gradient pointing into the ellipse) join ws.inliers: an occluder that crosses the disk
+// splits its outline into several paths, each tracing only part of the ellipse.
+// Returns the number of pixels added.
+std::size_t gatherOtherPaths(const EllipseOptions& o, const Paths& paths, std::size_t self, const EllipseFit& fit,
+                             EllipseWorkspace& ws) {
+  const Ellipse& e = fit.ellipse;
+  const double reach = e.a + 2.0 * o.trace_inlier_px;
+  const cv::Rect box(static_cast<int>(std::floor(e.cx - reach)), static_cast<int>(std::floor(e.cy - reach)),
+                     static_cast<int>(2.0 * reach) + 2, static_cast<int>(2.0 * reach) + 2);
+  std::size_t added = 0;
+  for (std::size_t j = 0; j < ws.paths.size(); ++j) {
+    const PathSummary& t = ws.paths[j];
+    if (j == self || !(t.polarity < 0.0) || (t.bbox & box).area() == 0) continue;
+    for (const EdgePixel& p : paths.path(j)) {
+      if (std::abs(sampsonDistance(fit, p.x, p.y)) > o.trace_inlier_px) continue;
+      if (p.gx * (p.x - e.cx) + p.gy * (p.y - e.cy) >= 0.0) continue;  // gradient points outwards
+      ws.inliers.push_back(p);
+      ++added;
+    }
+  }
+  return added;
+}
+
+// The robust pass on path i: the consensus fit of the path, and when its inliers trace
+// too little of the ellipse, the same ellipse's pixels on the other paths with them.
+Status robustTarget(const EllipseOptions& o, const Paths& paths, std::size_t i, cv::Size image,
+                    EllipseWorkspace& ws, EllipseFit& fit, EllipseTrace& trace) {
+  if (const Status st = consensusFit(o, paths.path(i), ws, fit); !ok(st)) return st;
+  traceEllipse(fit, ws.inliers, o.trace_inlier_px, image, trace);
+  fit.sampson_px = trace.mean_sampson_px;
+  if (fitAccepted(o, fit, trace, o.robust_min_traced_fraction)) return Status::Ok;
+  // Refit on the union twice, as the consensus did on the path alone.
+  for (int round = 0; round < 2; ++round) {
+    ws.inliers.clear();
+    for (const EdgePixel& p : paths.path(i))
+      if (std::abs(sampsonDistance(fit, p.x, p.y)) <= o.trace_inlier_px) ws.inliers.push_back(p);
+    if (gatherOtherPaths(o, paths, i, fit, ws) == 0) return Status::NotAnEllipse;
+    ConicMoments m;
+    m.add(std::span<const EdgePixel>(ws.inliers));
+    if (const Status st = fitEllipse(m, fit); !ok(st)) return st;
+  }
+  traceEllipse(fit, ws.inliers, o.trace_inlier_px, image, trace);
+  fit.sampson_px = trace.mean_sampson_px;
+  return fitAccepted(o, fit, trace, o.robust_min_traced_fraction) ? Status::Ok : Status::NotAnEllipse;
+}
+
+}  // namespace
+
+bool fitAccepted(const EllipseOptions& o, const EllipseFit& fit, const EllipseTrace& trace,
+                 double min_traced_fraction) {
+  return errorAccepted(o, fit, trace.mean_sampson_px) &&
+         trace.traced >= min_traced_fraction * trace.observable - 1e-12 && trace.traced >= o.min_arc_fraction;
+}
+
+Status detectEllipses(const EllipseOptions& o, const Paths& paths, cv::Size image, EllipseWorkspace& ws,
+                      std::vector<TargetDetection>& out) {
+  out.clear();
+  summariseAll(paths, ws);
+  for (std::size_t i = 0; i < ws.paths.size(); ++i) {
+    fitPath(o, paths, i, image, ws);
+    if (traceCandidate(o, paths.path(i), image, ws.paths[i])) out.push_back(toDetection(ws.paths[i], i));
+  }
+  return out.empty() ? Status::NoTarget : Status::Ok;
+}
+
+Status fitEllipseRobust(const EllipseOptions& o, std::span<const EdgePixel> path, cv::Size image,
+                        EllipseWorkspace& ws, EllipseFit& fit, EllipseTrace& trace) {
+  if (const Status st = consensusFit(o, path, ws, fit); !ok(st)) return st;
+  traceEllipse(fit, ws.inliers, o.trace_inlier_px, image, trace);
   fit.sampson_px = trace.mean_sampson_px;
   return fitAccepted(o, fit, trace, o.robust_min_traced_fraction) ? Status::Ok : Status::NotAnEllipse;
 }
@@ -332,6 +436,7 @@ Status fitEllipseRobust(const EllipseOptions& o, std::span<const EdgePixel> path
 Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Paths& paths, cv::Size image,
                     EllipseWorkspace& ws, std::vector<TargetDetection>& out) {
   out.clear();
+  ws.consensus_fits = 0;
   summariseAll(paths, ws);
   // Only a white path with two dark paths of spot size inside its box can be the target:
   // only such paths are fitted first, and only if their ellipse holds the spots is its
@@ -350,16 +455,24 @@ Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Path
     d.spots_found = true;
     out.push_back(d);
   }
-  if (out.empty() && o.robust_fit && o.method == EllipseMethod::DirectFit) {
+  // Every spot-holding path that failed the plain fit, also when a target was found
+  // above: a second, occluded target must make the frame ambiguous, not vanish.
+  if (o.robust_fit && o.method == EllipseMethod::DirectFit) {
     for (std::size_t i = 0; i < ws.paths.size(); ++i) {
       PathSummary& s = ws.paths[i];
-      const auto path = paths.path(i);
       if (!s.fitted || s.accepted) continue;  // fitted above: the paths that may hold spots
-      if (s.candidate && traceCandidate(o, path, image, s)) continue;  // accepted: holds no spots
+      if (s.candidate && traceCandidate(o, paths.path(i), image, s)) continue;  // accepted: holds no spots
+      if (!mayBeOccludedTarget(g, i, ws, out)) continue;
       EllipseFit fit;
       EllipseTrace trace;
-      if (!ok(fitEllipseRobust(o, path, image, ws, fit, trace))) continue;
+      if (!ok(robustTarget(o, paths, i, image, ws, fit, trace))) continue;
       if (!findSpots(o, g, fit.ellipse, i, ws, spots)) continue;
+      // The same spots as a target found already: the same target.
+      const bool seen = std::any_of(out.begin(), out.end(), [&](const TargetDetection& d) {
+        return std::find_first_of(d.spot_paths.begin(), d.spot_paths.end(), spots.begin(), spots.end()) !=
+               d.spot_paths.end();
+      });
+      if (seen) continue;
       s.fit = fit;
       s.trace = trace;
       TargetDetection d = toDetection(s, i);

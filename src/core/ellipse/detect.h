@@ -14,12 +14,16 @@
 // Target selection, beyond the thesis's "best ellipse": the target is a white disk with
 // two dark spots, so among the accepted ellipses with a white interior the one that
 // holds exactly two dark closed paths of the spots' size, one near the centre and the
-// other at spot_offset / radius from it, is the target. When none holds them, and
-// robust_fit is on, paths that enclose such spots but failed the fit (an occluder's
-// straight edges in the contour, thesis fig. 2.28) are refitted by consensus: the
-// six-point fit whose ellipse the path traces most (at most robust_iterations),
-// refitted on its inliers, accepted when they trace robust_min_traced_fraction of the
-// ellipse. Paths are fitted lazily: detectTarget first fits only white paths with two
+// other at spot_offset / radius from it, is the target. With robust_fit on, every path
+// that may hold spots but failed the plain fit (an occluder's straight edges in the
+// contour, thesis fig. 2.28) is refitted by consensus, also when a target was found
+// already (a second, occluded target makes the frame ambiguous): the six-point fit
+// whose ellipse the path traces most (at most robust_iterations), refitted on its
+// inliers, accepted when they trace robust_min_traced_fraction of the ellipse. When
+// they trace less, the pixels of other white paths on the same ellipse join them (an
+// occluder across the disk cuts its outline into several paths). Only paths whose plain
+// fit gave an ellipse holding (grown by half) a pair of dark paths shaped like the
+// spots, not a found target's, are refitted, so the common frame runs no consensus. Paths are fitted lazily: detectTarget first fits only white paths with two
 // spot-sized dark paths inside their bounding box, and traces the contour only of an
 // ellipse that holds the spots; detectEllipses fits every path. Two or more targets give AmbiguousTarget
 // (both reported) unless report_all_targets. Without any target, the thesis's rule picks
@@ -84,6 +88,7 @@ struct EllipseWorkspace {
   std::vector<std::size_t> dark;   // closed paths around dark regions: spot candidates
   std::vector<std::size_t> spots;
   std::mt19937 rng;
+  std::size_t consensus_fits = 0;  // consensus fits run by the last detectTarget
 };
 
 // Shape-only classification: every accepted path, in path order, into `out` (cleared

@@ -48,6 +48,21 @@ class TargetScene : public ::testing::Test {
     cv::circle(img, centre, radius, cv::Scalar(scene.white_level), cv::FILLED, cv::LINE_AA);
   }
 
+  // Pastes the card of a target rendered at `pose` (its projected corners' box) into img.
+  void pasteCard(cv::Mat& img, const Pose& pose) {
+    const cv::Mat other = render(pose);
+    double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
+    const Eigen::Matrix3d R = rotationMatrix(pose);
+    for (double sx : {-1.0, 1.0})
+      for (double sy : {-1.0, 1.0}) {
+        const Eigen::Vector2d p = projectIdeal(camera, R * Eigen::Vector3d(sx * 65, sy * 65, 0) + translation(pose));
+        x0 = std::min(x0, p.x()), y0 = std::min(y0, p.y()), x1 = std::max(x1, p.x()), y1 = std::max(y1, p.y());
+      }
+    const cv::Rect box = cv::Rect(cv::Point(int(x0) - 1, int(y0) - 1), cv::Point(int(x1) + 2, int(y1) + 2)) &
+                         cv::Rect(0, 0, img.cols, img.rows);
+    other(box).copyTo(img(box));
+  }
+
   CameraModel camera;
   TargetGeometry target;
   VirtualSceneOptions scene;
@@ -74,6 +89,7 @@ TEST_F(TargetScene, FoundWithItsSpotsAcrossPoses) {
     EXPECT_NEAR(spot.cy, centre.y(), 1.0);
     EXPECT_LT(d.fit_error, options.max_relative_error);
     EXPECT_GT(d.traced, 0.95);
+    EXPECT_EQ(ws.consensus_fits, 0u);  // the common frame fits one path, once
   }
 }
 
@@ -86,6 +102,7 @@ TEST_F(TargetScene, PlainDiskAndClutterAreNotTheTarget) {
   ASSERT_EQ(detect(img), Status::Ok);
   ASSERT_EQ(found.size(), 1u);
   EXPECT_TRUE(found[0].spots_found);
+  EXPECT_EQ(ws.consensus_fits, 0u);
   expectEllipseOfPose(found[0], pose);
   // Both the disk and the target are ellipses to the shape-only classification.
   std::vector<TargetDetection> shapes;
@@ -110,21 +127,10 @@ TEST_F(TargetScene, WithoutTheTargetThePlainDiskIsOnlyAFallback) {
 TEST_F(TargetScene, TwoTargetsAreAmbiguousOrBothReported) {
   const Pose left{0, 20, 0, -150, 0, 800}, right{10, -30, 45, 150, 20, 800};
   cv::Mat img = render(left);
-  const cv::Mat other = render(right);
-  // Paste the right target's card (its projected corners' box) into the left frame.
-  double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
-  const Eigen::Matrix3d R = rotationMatrix(right);
-  for (double sx : {-1.0, 1.0})
-    for (double sy : {-1.0, 1.0}) {
-      const Eigen::Vector2d p =
-          projectIdeal(camera, R * Eigen::Vector3d(sx * 65, sy * 65, 0) + translation(right));
-      x0 = std::min(x0, p.x()), y0 = std::min(y0, p.y()), x1 = std::max(x1, p.x()), y1 = std::max(y1, p.y());
-    }
-  const cv::Rect box = cv::Rect(cv::Point(int(x0) - 1, int(y0) - 1), cv::Point(int(x1) + 2, int(y1) + 2)) &
-                       cv::Rect(0, 0, img.cols, img.rows);
-  other(box).copyTo(img(box));
+  pasteCard(img, right);
   EXPECT_EQ(detect(img), Status::AmbiguousTarget);
   ASSERT_EQ(found.size(), 2u);
+  EXPECT_EQ(ws.consensus_fits, 0u);  // both pass the plain fit
   options.report_all_targets = true;
   ASSERT_EQ(detect(img), Status::Ok);
   ASSERT_EQ(found.size(), 2u);
@@ -133,17 +139,50 @@ TEST_F(TargetScene, TwoTargetsAreAmbiguousOrBothReported) {
   expectEllipseOfPose(found[left_first ? 1 : 0], right);
 }
 
-// Covers the cap of the disk image beyond the chord at `depth` (fraction of the radius
-// measured from the centre along -v): the occluded share of the contour is
-// acos(depth) / pi.
-void occludeCap(cv::Mat& img, const Ellipse& e, double depth, int level) {
+// Share of the perimeter of `e` above the line v = y_chord (smaller v), by arc length.
+double shareAbove(const Ellipse& e, double y_chord) {
+  const double th = e.angle_deg * kPi / 180.0;
+  auto at = [&](double t) {
+    const double u = e.a * std::cos(t), v = e.b * std::sin(t);
+    return Eigen::Vector2d(e.cx + u * std::cos(th) - v * std::sin(th), e.cy + u * std::sin(th) + v * std::cos(th));
+  };
+  double above = 0.0, total = 0.0;
+  Eigen::Vector2d prev = at(0.0);
+  for (int k = 1; k <= 7200; ++k) {
+    const Eigen::Vector2d p = at(2.0 * kPi * k / 7200);
+    const double len = (p - prev).norm();
+    total += len;
+    if (0.5 * (p.y() + prev.y()) < y_chord) above += len;
+    prev = p;
+  }
+  return above / total;
+}
+
+// The chord v = y below which the cap above it holds `share` of the perimeter of `e`.
+double chordForShare(const Ellipse& e, double share) {
+  double lo = e.cy - e.a - e.b, hi = e.cy + e.a + e.b;  // shareAbove(lo) = 0, shareAbove(hi) = 1
+  for (int k = 0; k < 60; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (shareAbove(e, mid) < share ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// Covers everything above the chord v = y_chord within the ellipse's reach (a black cap).
+void occludeAbove(cv::Mat& img, const Ellipse& e, double y_chord, int level) {
+  const double reach = e.a + 20;
+  const cv::Point2d corners[4] = {{e.cx - reach, y_chord}, {e.cx + reach, y_chord}, {e.cx + reach, e.cy - reach},
+                                  {e.cx - reach, e.cy - reach}};
+  // Sub-pixel corners (8 fractional bits), so the chord sits where the share puts it.
   std::vector<cv::Point> poly;
-  const double y_chord = e.cy - depth * e.b;  // the test poses keep the axes along u, v
-  poly.emplace_back(int(e.cx - e.a - 20), int(y_chord));
-  poly.emplace_back(int(e.cx + e.a + 20), int(y_chord));
-  poly.emplace_back(int(e.cx + e.a + 20), int(e.cy - e.b - 20));
-  poly.emplace_back(int(e.cx - e.a - 20), int(e.cy - e.b - 20));
-  cv::fillConvexPoly(img, poly, cv::Scalar(level));
+  for (const cv::Point2d& c : corners) poly.emplace_back(int(std::lround(c.x * 256)), int(std::lround(c.y * 256)));
+  cv::fillConvexPoly(img, poly, cv::Scalar(level), cv::LINE_8, 8);
+}
+
+// Covers the cap of the disk image holding `share` of its contour (measured along the
+// exact ellipse of the pose).
+void occludeCap(cv::Mat& img, const Ellipse& e, double share, int level) {
+  occludeAbove(img, e, chordForShare(e, share), level);
 }
 
 TEST_F(TargetScene, OccludedTargetFoundByConsensusFit) {
@@ -152,7 +191,7 @@ TEST_F(TargetScene, OccludedTargetFoundByConsensusFit) {
   for (const double share : {0.12, 0.2}) {  // of the contour hidden
     SCOPED_TRACE(share);
     cv::Mat img = render(pose);
-    occludeCap(img, truth, std::cos(share * kPi), scene.black_level);
+    occludeCap(img, truth, share, scene.black_level);
     ASSERT_EQ(detect(img), Status::Ok);
     ASSERT_EQ(found.size(), 1u);
     EXPECT_TRUE(found[0].robust);
@@ -163,7 +202,7 @@ TEST_F(TargetScene, OccludedTargetFoundByConsensusFit) {
   }
   // Without the consensus fit the straight part spoils the plain fit (thesis fig. 2.28).
   cv::Mat img = render(pose);
-  occludeCap(img, truth, std::cos(0.2 * kPi), scene.black_level);
+  occludeCap(img, truth, 0.2, scene.black_level);
   options.robust_fit = false;
   options.require_target_spots = true;
   EXPECT_EQ(detect(img), Status::NoTarget);
@@ -172,8 +211,71 @@ TEST_F(TargetScene, OccludedTargetFoundByConsensusFit) {
 TEST_F(TargetScene, MoreThanAQuarterOccludedIsNotATarget) {
   const Pose pose{0, 25, 0, 0, 0, 700};
   cv::Mat img = render(pose);
-  occludeCap(img, test::diskImage(camera, target, pose), std::cos(0.35 * kPi), scene.black_level);
+  occludeCap(img, test::diskImage(camera, target, pose), 0.35, scene.black_level);
   EXPECT_EQ(detect(img), Status::NoTarget);
+}
+
+TEST_F(TargetScene, AQuarterOccludedIsStillFound) {
+  // The limit: a target with at least 75 % of its contour visible is found.
+  const Pose pose{0, 25, 0, 0, 0, 700};
+  const Ellipse truth = test::diskImage(camera, target, pose);
+  for (const double share : {0.24, 0.245, 0.25}) {
+    SCOPED_TRACE(share);
+    cv::Mat img = render(pose);
+    occludeCap(img, truth, share, scene.black_level);
+    ASSERT_EQ(detect(img), Status::Ok);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_TRUE(found[0].robust);
+    expectEllipseOfPose(found[0], pose, 1.0);
+    EXPECT_GE(found[0].traced, options.robust_min_traced_fraction);
+  }
+}
+
+TEST_F(TargetScene, OccludedSecondTargetIsNotDroppedSilently) {
+  // The clean target passes the plain fit; the other, a cap hiding 15 % of its rim,
+  // only the consensus fit: both count, so the frame is ambiguous.
+  const Pose left{0, 20, 0, -150, 0, 800}, right{0, -25, 0, 150, 20, 800};
+  cv::Mat img = render(left);
+  pasteCard(img, right);
+  const Ellipse right_truth = test::diskImage(camera, target, right);
+  occludeCap(img, right_truth, 0.15, scene.black_level);
+  ASSERT_NEAR(shareAbove(right_truth, chordForShare(right_truth, 0.15)), 0.15, 1e-3);
+  EXPECT_EQ(detect(img), Status::AmbiguousTarget);
+  ASSERT_EQ(found.size(), 2u);
+  options.report_all_targets = true;
+  ASSERT_EQ(detect(img), Status::Ok);
+  ASSERT_EQ(found.size(), 2u);
+  const bool left_first = found[0].ellipse.cx < found[1].ellipse.cx;
+  const TargetDetection& l = found[left_first ? 0 : 1];
+  const TargetDetection& r = found[left_first ? 1 : 0];
+  EXPECT_FALSE(l.robust);
+  EXPECT_TRUE(r.robust);
+  EXPECT_TRUE(l.spots_found && r.spots_found);
+  expectEllipseOfPose(l, left);
+  expectEllipseOfPose(r, right, 1.0);
+}
+
+TEST_F(TargetScene, ThinBarAcrossTheDiskIsBridged) {
+  // A 5 px black bar across the disk, clear of the spots, hides a few per cent of the
+  // rim but cuts the outline into two paths, neither tracing 75 % of the ellipse: the
+  // consensus ellipse of the larger takes the rim pixels of the other path with it.
+  const Pose pose{0, 0, 0, 0, 0, 700};
+  const Ellipse truth = test::diskImage(camera, target, pose);
+  for (const double offset : {0.5, -0.45}) {  // bar centre below / above the disk centre, in radii
+    SCOPED_TRACE(offset);
+    cv::Mat img = render(pose);
+    const double y = truth.cy + offset * truth.b;
+    cv::rectangle(img, cv::Rect(0, int(std::lround(y)) - 2, img.cols, 5), cv::Scalar(scene.black_level), cv::FILLED);
+    // The rim hidden: the two crossings of the bar's band.
+    const double hidden = shareAbove(truth, y + 3.0) - shareAbove(truth, y - 2.0);
+    EXPECT_LT(hidden, 0.07);
+    ASSERT_EQ(detect(img), Status::Ok);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_TRUE(found[0].robust);
+    EXPECT_TRUE(found[0].spots_found);
+    expectEllipseOfPose(found[0], pose, 1.0);
+    EXPECT_GE(found[0].traced, 0.9);
+  }
 }
 
 TEST_F(TargetScene, WhiteOccluderMergedWithTheDisk) {
