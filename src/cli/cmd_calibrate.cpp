@@ -18,6 +18,8 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
+constexpr size_t kMaxImages = 4;
+
 json resultJson(const CalibrationResult& r) {
   json j;
   j["status"] = std::string(statusName(r.status));
@@ -27,6 +29,7 @@ json resultJson(const CalibrationResult& r) {
   j["p2"] = r.distortion.p2;
   j["iterations"] = r.iterations;
   j["rms_residual_px"] = r.rms_residual_px;
+  j["coverage_radius_fraction"] = r.coverage_radius_fraction;
   return j;
 }
 
@@ -37,10 +40,13 @@ int run(const Args& args) {
   const auto out = args.value("out");
   if (!out) throw UsageError("--out FILE is required (the camera section of the settings is written there)");
   if (args.positionals().empty()) throw UsageError("no images given (one to four images of the pattern)");
+  if (args.positionals().size() > kMaxImages)
+    throw UsageError("at most four images (thesis 4.6: one to four views of the pattern)");
   Settings settings = loadConfig(args);
   const bool text = format == "text";
 
-  // Unreadable files are reported and left out; the others may still suffice.
+  // Unreadable files and images of another size than the camera's are reported and left
+  // out; the others may still suffice.
   std::vector<cv::Mat> images;
   std::vector<std::string> names;
   for (const std::string& path : args.positionals()) {
@@ -50,13 +56,15 @@ int run(const Args& args) {
       std::fprintf(stderr, "%s (skipped)\n", error.c_str());
       continue;
     }
-    if (grey.cols != settings.camera.width || grey.rows != settings.camera.height)
+    if (grey.cols != settings.camera.width || grey.rows != settings.camera.height) {
       std::fprintf(stderr, "%s: %dx%d, but the settings' camera is %dx%d (skipped)\n", path.c_str(), grey.cols,
                    grey.rows, settings.camera.width, settings.camera.height);
+      continue;
+    }
     images.push_back(grey);
     names.push_back(path);
   }
-  if (images.empty()) throw InputError("none of the images could be read");
+  if (images.empty()) throw InputError("none of the images can be used");
 
   if (text)
     std::printf("calibrating from %zu image(s); pattern spots %g mm apart, %d x %d grid\n", images.size(),
@@ -84,6 +92,10 @@ int run(const Args& args) {
                    std::string(statusName(im.status)).c_str(), std::string(statusMessage(im.status)).c_str());
     }
   }
+  if (text)
+    std::printf("coverage: the matched spots reach %.0f %% of the way from the principal point to the farthest "
+                "corner (at least %.0f %% needed)\n",
+                100.0 * result.coverage_radius_fraction, 100.0 * kMinCoverageRadiusFraction);
   if (!text) std::printf("%s\n", resultJson(result).dump().c_str());
   if (!ok(status))
     throw InputError("calibration failed: " + std::string(statusName(status)) + ": " +
@@ -111,8 +123,13 @@ const CommandRegistration kRegistration{{
     "  --out FILE      write the settings' camera section with the distortion found (JSON,\n"
     "                  atomically; an existing FILE is kept as FILE.bak)\n"
     "  --format F      text (default): every iteration and the RMS residual in px;\n"
-    "                  json: one object {status, k1, k2, p1, p2, iterations, rms_residual_px}\n"
-    "Exit code 1 when the calibration fails (its error is named).",
+    "                  json: one object {status, k1, k2, p1, p2, iterations, rms_residual_px,\n"
+    "                  coverage_radius_fraction}\n"
+    "An image that cannot be read or is not the camera's size is reported and skipped.\n"
+    "The matched spots must reach far enough towards the image's corners, else PoorCoverage:\n"
+    "move the pattern closer or print it larger (docs/calibration.md gives the distances).\n"
+    "Exit code 1 when the calibration fails (its error is named), 2 for a usage error\n"
+    "(e.g. more than four images).",
     {},
     run,
 }};

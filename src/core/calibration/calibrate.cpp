@@ -1,5 +1,6 @@
 #include "core/calibration/calibrate.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -43,6 +44,19 @@ PatternLocator targetPatternLocator(const Settings& settings) {
     pose = *result.pose;
     return Status::Ok;
   };
+}
+
+double coverageRadiusFraction(const CameraModel& camera, std::span<const CalibrationImageReport> images) {
+  const Eigen::Vector2d pp(camera.u0(), camera.v0());
+  double corner = 0.0;
+  for (const Eigen::Vector2d& q : {Eigen::Vector2d(0, 0), Eigen::Vector2d(camera.width, 0),
+                                   Eigen::Vector2d(0, camera.height), Eigen::Vector2d(camera.width, camera.height)})
+    corner = std::max(corner, (q - pp).norm());
+  double reached = 0.0;
+  for (const CalibrationImageReport& im : images)
+    if (ok(im.status))
+      for (const SpotCorrespondence& s : im.correspondences) reached = std::max(reached, (s.ideal_px - pp).norm());
+  return corner > 0.0 ? reached / corner : 0.0;
 }
 
 Status iterateDistortion(const CameraModel& camera, const CalibrationOptions& options, const Distortion& start,
@@ -181,7 +195,11 @@ Status calibrateDistortion(const Settings& settings, std::span<const cv::Mat> im
     result.history.back().images_used = copy.images_used;
     if (onIteration) onIteration(copy);
   };
-  return iterateDistortion(settings.camera, options, Distortion{}, measure, result, record, correct);
+  const Status status = iterateDistortion(settings.camera, options, Distortion{}, measure, result, record, correct);
+  result.coverage_radius_fraction = coverageRadiusFraction(settings.camera, result.images);
+  if (ok(status) && result.coverage_radius_fraction < kMinCoverageRadiusFraction)
+    return result.status = Status::PoorCoverage;
+  return status;
 }
 
 }  // namespace imagepro

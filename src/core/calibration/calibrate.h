@@ -27,7 +27,9 @@
 // MatchAmbiguity (more than options.max_ambiguous_fraction of the spots ambiguous).
 // For the whole calibration: the first image's error when no image is usable, DegenerateFit
 // when the matches do not determine the parameters, Diverged when an estimate stops being a
-// plausible lens (distortion_fit.h) or options.max_iterations pass without convergence.
+// plausible lens (distortion_fit.h) or options.max_iterations pass without convergence,
+// PoorCoverage when it converged but the matched spots do not reach far enough towards the
+// image's corners (coverageRadiusFraction; the estimate is in the result all the same).
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
@@ -69,8 +71,21 @@ struct CalibrationIteration {
   int images_used = 0;
 };
 
+// How far out the matched spots reach, over every image used in the last iteration: the
+// largest distance of a matched spot's ideal position from the principal point, as a
+// fraction of the distance of the image's farthest corner. The fit extrapolates eq. 4.7
+// beyond it, and the r^4 term goes wrong fast: a pattern seen too small (an A4 sheet 800 mm
+// away with the thesis camera) fits with a residual of 0.02 px and a field wrong by a pixel
+// or more at the corners. Below kMinCoverageRadiusFraction the calibration is PoorCoverage:
+// the threshold is the smallest reach at which every measured calibration of the four
+// +-45 deg views (A4 and A3 sheets, 300-1400 mm) kept its field error below half the
+// 0.1 px goal (docs/calibration.md, "Coverage").
+inline constexpr double kMinCoverageRadiusFraction = 0.6;
+double coverageRadiusFraction(const CameraModel& camera, std::span<const CalibrationImageReport> images);
+
 struct CalibrationResult {
   Status status = Status::Stopped;
+  double coverage_radius_fraction = 0.0;  // of the last iteration's matches (coverageRadiusFraction)
   Distortion distortion;  // the last estimate
   bool converged = false;
   int iterations = 0;

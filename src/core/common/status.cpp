@@ -33,6 +33,7 @@ StatusText text(Status s) {
     case Status::CentreSpotOutsideEllipse: return {"CentreSpotOutsideEllipse", "the centre spot lies outside the target's ellipse"};
     case Status::NormalFacingAway: return {"NormalFacingAway", "the reconstructed target faces away from the camera"};
     case Status::OutOfImage: return {"OutOfImage", "the target or region lies outside the image"};
+    case Status::FrameSizeMismatch: return {"FrameSizeMismatch", "the frame's size differs from the camera model's: calibrate the camera at this resolution or set its size in the settings"};
     case Status::CameraNotFound: return {"CameraNotFound", "no camera device at that path"};
     case Status::CameraPermissionDenied: return {"CameraPermissionDenied", "permission denied opening the camera"};
     case Status::CameraBusy: return {"CameraBusy", "the camera is in use by another program"};
@@ -44,6 +45,7 @@ StatusText text(Status s) {
     case Status::TooFewMatches: return {"TooFewMatches", "too few calibration spots were matched"};
     case Status::MatchAmbiguity: return {"MatchAmbiguity", "a calibration spot matches more than one ideal position"};
     case Status::Diverged: return {"Diverged", "the iteration diverged"};
+    case Status::PoorCoverage: return {"PoorCoverage", "the pattern covers too little of the image to calibrate it to its corners: move the pattern closer or print it larger"};
     case Status::TooFewTargets: return {"TooFewTargets", "fewer targets were reconstructed in the frame than the measurement needs"};
     case Status::TooFewFrames: return {"TooFewFrames", "too few frames with a reconstructed pose for the analysis"};
     case Status::NoSwing: return {"NoSwing", "the target does not swing: no repeated oscillation stands out from the noise"};

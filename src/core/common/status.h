@@ -35,6 +35,7 @@ enum class Status : std::uint8_t {
   CentreSpotOutsideEllipse,
   NormalFacingAway,
   OutOfImage,
+  FrameSizeMismatch,   // the frame's size differs from the camera model's: its pose would be wrong
   // camera
   CameraNotFound,
   CameraPermissionDenied,
@@ -48,6 +49,7 @@ enum class Status : std::uint8_t {
   TooFewMatches,
   MatchAmbiguity,
   Diverged,
+  PoorCoverage,        // the calibration's matched spots reach too little of the image
   // analysis (case studies, thesis 5.3)
   TooFewTargets,       // fewer targets in the frame than the measurement needs
   TooFewFrames,        // too few frames with a pose for the analysis

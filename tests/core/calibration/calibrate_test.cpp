@@ -5,8 +5,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "calibration_scenes.h"
@@ -257,6 +259,69 @@ TEST_F(CalibrationProcedure, ADoubleExposureIsAMatchAmbiguity) {
             Status::MatchAmbiguity);
   EXPECT_EQ(r.images[0].status, Status::MatchAmbiguity);
   EXPECT_GT(r.images[0].match.ambiguous, 0);
+}
+
+TEST_F(CalibrationProcedure, TheIterationLimitThroughTheWholeProcedureIsDiverged) {
+  // One iteration cannot converge: its relative change from zero is 1.
+  settings_.pipeline.calibration.max_iterations = 1;
+  CalibrationResult r;
+  EXPECT_EQ(calibrateDistortion(settings_, images_, r), Status::Diverged);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.iterations, 1);
+  ASSERT_EQ(r.history.size(), 1u);
+  EXPECT_NEAR(r.history[0].relative_change, 1.0, 1e-9);
+  for (const CalibrationImageReport& im : r.images) EXPECT_EQ(im.status, Status::Ok);  // the images were fine
+}
+
+TEST(CalibrationCoverage, TheFarthestMatchedSpotOverTheCornerRadius) {
+  const CameraModel cam;  // 640 x 480, principal point (319.5, 239.5)
+  const Eigen::Vector2d pp(cam.u0(), cam.v0());
+  const double corner = Eigen::Vector2d(320.5, 240.5).norm();  // to (640, 480)
+  std::vector<CalibrationImageReport> images(2);
+  auto at = [&](double du, double dv) {  // a matched spot whose ideal position is pp + (du, dv)
+    SpotCorrespondence c;
+    c.ideal_px = pp + Eigen::Vector2d(du, dv);
+    return c;
+  };
+  images[0].status = Status::Ok;
+  images[0].correspondences.push_back(at(100.0, 0.0));
+  images[0].correspondences.push_back(at(-120.0, 160.0));  // 200 px out
+  images[1].status = Status::NoTarget;  // not used: its spots do not count
+  images[1].correspondences.push_back(at(300.0, 0.0));
+  EXPECT_NEAR(coverageRadiusFraction(cam, images), 200.0 / corner, 1e-12);
+  images[1].status = Status::Ok;
+  EXPECT_NEAR(coverageRadiusFraction(cam, images), 300.0 / corner, 1e-12);
+  EXPECT_EQ(coverageRadiusFraction(cam, std::span<const CalibrationImageReport>()), 0.0);
+}
+
+// A sheet the size of the A4 page (11 x 7 spacings, as `imagepro-cli pattern --paper A4`
+// prints it) seen at the four views: from 800 mm its spots stay in the middle of the
+// image, the fit converges with a small residual and a field wrong by a pixel at the
+// corners, which must not pass as a calibration; from 400 mm it covers enough.
+TEST(CalibrationCoverage, AnA4SheetTooFarAwayIsPoorCoverage) {
+  Settings settings;
+  settings.pattern.columns = 11;
+  settings.pattern.rows = 7;
+  for (const double distance : {800.0, 400.0}) {
+    std::array<Pose, 4> views = recommendedCalibrationViews(distance);
+    const auto images = testing::renderViews(settings, kThesisCameraDistortion, views, testing::realisticScene());
+    CalibrationResult r;
+    const Status s = calibrateDistortion(settings, images, r);
+    const double fieldRms = compareDistortionFields(settings.camera, r.distortion, kThesisCameraDistortion).rms_px;
+    std::printf("A4 sheet at %.0f mm: %s, reach %.3f of the corner radius, field error %.3f px RMS\n", distance,
+                std::string(statusName(s)).c_str(), r.coverage_radius_fraction, fieldRms);
+    if (distance > 500.0) {
+      EXPECT_EQ(s, Status::PoorCoverage);
+      EXPECT_TRUE(r.converged);  // the fit itself converged: only the coverage says it is wrong
+      EXPECT_LT(r.coverage_radius_fraction, kMinCoverageRadiusFraction);
+      EXPECT_GT(fieldRms, 0.1);  // what the check protects against
+      for (const CalibrationImageReport& im : r.images) EXPECT_EQ(im.status, Status::Ok);
+    } else {
+      EXPECT_EQ(s, Status::Ok);
+      EXPECT_GE(r.coverage_radius_fraction, kMinCoverageRadiusFraction);
+      EXPECT_LT(fieldRms, 0.1);
+    }
+  }
 }
 
 TEST_F(CalibrationProcedure, NoImagesAndEmptyImages) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <vector>
 
 #include "calibration_scenes.h"
@@ -131,27 +132,37 @@ TEST(SpotMatching, WithoutTheNeighboursDisplacementTheSpacingIsTooSmall) {
   EXPECT_GT(wrong + stats.ambiguous + stats.missing, 0);
 }
 
-TEST(SpotMatching, AMissingSpotIsLeftOutAndTheRestStillMatch) {
-  MatchCase m = matchCase(kThesisCameraDistortion, calibrationViews()[0]);
-  // Take away a spot half way out, and one whose inner neighbours are all that predicts it.
-  std::map<int, int> seenIndex;  // observed index -> ideal index
-  const int removed = static_cast<int>(m.ideal.size() / 2);
-  std::vector<ObservedSpot> seen;
-  for (int k = 0; k < static_cast<int>(m.seen.size()); ++k)
-    if (k != removed) {
-      seenIndex[static_cast<int>(seen.size())] = k;
-      seen.push_back(m.seen[k]);
+TEST(SpotMatching, MissingSpotsAreLeftOutAndTheRestStillMatch) {
+  const MatchCase m = matchCase(kThesisCameraDistortion, calibrationViews()[0]);
+  // A spot half way out; then also its outer neighbour in its row, so that the spot beyond
+  // the two holes is predicted by its other matched neighbours alone.
+  const int half = static_cast<int>(m.ideal.size() / 2);
+  const Eigen::Vector2d pp(m.cam.u0(), m.cam.v0());
+  int outer = -1;
+  for (int k = 0; k < static_cast<int>(m.ideal.size()); ++k)
+    if (m.ideal[k].row == m.ideal[half].row && std::abs(m.ideal[k].column - m.ideal[half].column) == 1 &&
+        (m.ideal[k].ideal - pp).norm() > (m.ideal[half].ideal - pp).norm())
+      outer = k;
+  ASSERT_GE(outer, 0);
+  for (const std::set<int>& removed : {std::set<int>{half}, std::set<int>{half, outer}}) {
+    std::map<int, int> seenIndex;  // observed index -> ideal index
+    std::vector<ObservedSpot> seen;
+    for (int k = 0; k < static_cast<int>(m.seen.size()); ++k)
+      if (!removed.count(k)) {
+        seenIndex[static_cast<int>(seen.size())] = k;
+        seen.push_back(m.seen[k]);
+      }
+    MatchWorkspace ws;
+    std::vector<SpotMatch> matches;
+    MatchStats stats;
+    matchSpots(m.cam, m.pattern, m.ideal, seen, true, ws, matches, stats);
+    EXPECT_EQ(stats.missing, static_cast<int>(removed.size()));
+    EXPECT_EQ(stats.ambiguous, 0);
+    EXPECT_EQ(matches.size(), m.ideal.size() - removed.size());
+    for (const SpotMatch& s : matches) {
+      EXPECT_FALSE(removed.count(s.ideal));
+      EXPECT_EQ(seenIndex[s.observed], s.ideal);
     }
-  MatchWorkspace ws;
-  std::vector<SpotMatch> matches;
-  MatchStats stats;
-  matchSpots(m.cam, m.pattern, m.ideal, seen, true, ws, matches, stats);
-  EXPECT_EQ(stats.missing, 1);
-  EXPECT_EQ(stats.ambiguous, 0);
-  EXPECT_EQ(matches.size(), m.ideal.size() - 1);
-  for (const SpotMatch& s : matches) {
-    EXPECT_NE(s.ideal, removed);
-    EXPECT_EQ(seenIndex[s.observed], s.ideal);
   }
 }
 
