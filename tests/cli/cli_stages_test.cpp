@@ -341,6 +341,14 @@ TEST(CliEdges, BadInputsAndRepeatedNames) {
             (std::vector<std::string>{"frame_2_binary.png", "frame_2_edges.png", "frame_2_paths.png",
                                       "frame_binary.png", "frame_edges.png", "frame_paths.png"}));
 
+  // A PNG that cannot be written (a folder has its name): named too, exit 1.
+  fs::create_directories(dir / "blocked" / "frame_edges.png");
+  const CliRun blocked = cli("edges --out " + (dir / "blocked").string() + " " + (dir / "a" / "frame.png").string());
+  EXPECT_EQ(blocked.exit_code, 1);
+  expectOneLinePerBadInput("edges", blocked.err, {"FileNotWritable: " + (dir / "a" / "frame.png").string()});
+  ASSERT_EQ(lines(blocked.out).size(), 2u) << blocked.out;
+  EXPECT_EQ(fields(lines(blocked.out)[1])[1], "FileNotWritable");
+
   const CliRun empty = cli("edges " + (dir / "out" / "nothing.txt").string());
   EXPECT_EQ(empty.exit_code, 1);
   expectOneLinePerBadInput("edges", empty.err, {"nothing.txt"});
