@@ -71,12 +71,20 @@ void detectStage(benchmark::State& state, EllipseMethod method) {
   EllipseWorkspace ws;
   std::vector<TargetDetection> out;
   int found = 0, runs = 0;
+  std::size_t fitted = 0, fitted_pixels = 0;  // paths the stage fitted and their pixels (last frame)
   runFrames(state, [&](int i) {
-    found += ok(detectTarget(o, g, f[static_cast<std::size_t>(i)], kImage, ws, out)) && out[0].spots_found;
+    const Paths& p = f[static_cast<std::size_t>(i)];
+    found += ok(detectTarget(o, g, p, kImage, ws, out)) && out[0].spots_found;
     ++runs;
     benchmark::DoNotOptimize(out.data());
+    fitted = fitted_pixels = 0;
+    for (std::size_t k = 0; k < ws.paths.size(); ++k)
+      if (ws.paths[k].fitted) ++fitted, fitted_pixels += p.path(k).size();
   });
   state.counters["target_found"] = runs ? double(found) / runs : 0.0;
+  state.counters["stage_fitted"] = static_cast<double>(fitted);
+  state.counters["stage_fitted_pixels"] = static_cast<double>(fitted_pixels);
+  state.counters["consensus_fits"] = static_cast<double>(ws.consensus_fits);
 }
 
 void DirectFitStage(benchmark::State& state) { detectStage(state, EllipseMethod::DirectFit); }

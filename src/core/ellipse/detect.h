@@ -87,6 +87,7 @@ struct EllipseWorkspace {
   std::vector<EdgePixel> inliers;
   std::vector<std::size_t> dark;   // closed paths around dark regions: spot candidates
   std::vector<std::size_t> spots;
+  std::vector<std::size_t> order;  // paths that may hold spots, smallest box first
   std::mt19937 rng;
   std::size_t consensus_fits = 0;  // consensus fits run by the last detectTarget
 };

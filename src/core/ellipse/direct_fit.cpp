@@ -10,7 +10,7 @@
 #include <tuple>
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
+#include <immintrin.h>
 #endif
 
 #include "core/ellipse/pixel_passes.h"
@@ -106,6 +106,55 @@ void exactSums(std::span<const EdgePixel> block, int ox, int oy, std::array<doub
          low(s3), low(s21), high(s21), high(s3),
          low(s4), low(s31), low(s22), high(s31), high(s4)};
 }
+
+// exactSums with two pixels per AVX2 vector, lanes (x0, y0, x1, y1): the same exact
+// integer sums (so the same doubles), in half the instructions.
+#pragma GCC push_options
+#pragma GCC target("avx2")
+void exactSumsAvx2(std::span<const EdgePixel> block, int ox, int oy, std::array<double, 15>& sum) {
+  const __m128i origin = _mm_setr_epi32(ox, oy, ox, oy);
+  const __m256d zero = _mm256_setzero_pd();
+  __m256d s1 = zero, s2 = zero, s11 = zero, s3 = zero, s21 = zero, s4 = zero, s31 = zero, s22 = zero;
+  auto step = [&](__m256d d) {
+    const __m256d swapped = _mm256_permute_pd(d, 0b0101);
+    const __m256d sq = _mm256_mul_pd(d, d), xy = _mm256_mul_pd(d, swapped);
+    s1 = _mm256_add_pd(s1, d);
+    s2 = _mm256_add_pd(s2, sq);
+    s11 = _mm256_add_pd(s11, xy);
+    s3 = _mm256_add_pd(s3, _mm256_mul_pd(sq, d));
+    s21 = _mm256_add_pd(s21, _mm256_mul_pd(sq, swapped));
+    s4 = _mm256_add_pd(s4, _mm256_mul_pd(sq, sq));
+    s31 = _mm256_add_pd(s31, _mm256_mul_pd(sq, xy));
+    s22 = _mm256_add_pd(s22, _mm256_mul_pd(sq, _mm256_permute_pd(sq, 0b0101)));
+  };
+  const std::size_t n = block.size();
+  std::size_t i = 0;
+  for (; i + 2 <= n; i += 2) {
+    // x0 y0 gx0 gy0 x1 y1 gx1 gy1 (int16) -> x0 y0 x1 y1 (int32) -> offsets in doubles.
+    const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(block.data() + i));
+    const __m128i xy16 = _mm_shuffle_epi32(v, _MM_SHUFFLE(2, 0, 2, 0));
+    step(_mm256_cvtepi32_pd(_mm_sub_epi32(_mm_cvtepi16_epi32(xy16), origin)));
+  }
+  if (i < n) {  // the last, odd pixel, the other lanes zero
+    const __m128i p = _mm_setr_epi32(block[i].x - ox, block[i].y - oy, 0, 0);
+    step(_mm256_cvtepi32_pd(p));
+  }
+  // Lanes 0 and 2 hold the first sum of a pair, 1 and 3 the second.
+  auto first = [](__m256d v) {
+    const __m128d h = _mm_add_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
+    return _mm_cvtsd_f64(h);
+  };
+  auto second = [](__m256d v) {
+    const __m128d h = _mm_add_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
+    return _mm_cvtsd_f64(_mm_unpackhi_pd(h, h));
+  };
+  sum = {static_cast<double>(n),
+         first(s1), second(s1),
+         first(s2), first(s11), second(s2),
+         first(s3), first(s21), second(s21), second(s3),
+         first(s4), first(s31), first(s22), second(s31), second(s4)};
+}
+#pragma GCC pop_options
 #endif
 
 // Points whose best unconstrained conic is a hyperbola or parabola that fits this many
@@ -153,7 +202,10 @@ void ConicMoments::add(std::span<const EdgePixel> points) {
     std::array<double, 15> block_sum;
 #if defined(__SSE2__)
     if (lo > -kExactDoubleReach && hi < kExactDoubleReach) {
-      exactSums(block, ox, oy, block_sum);
+      if (pixel_passes::detail::hasAvx2())
+        exactSumsAvx2(block, ox, oy, block_sum);
+      else
+        exactSums(block, ox, oy, block_sum);
     } else
 #endif
     {
