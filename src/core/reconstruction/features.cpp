@@ -7,6 +7,10 @@
 #include <cstdint>
 #include <cstring>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "core/segmentation/image_buffer.h"
 #include "core/segmentation/threshold.h"
 
@@ -20,6 +24,7 @@ constexpr double kSpotRimClearancePx = 2.5;  // spot centroids ignore pixels thi
 constexpr double kRaySteps = 16.0;  // 8 points MOD: samples per pixel along a ray
 constexpr double kMinSubPixelContrastFraction = 0.3;
 constexpr double kSubPixelPoints = 160.0;
+constexpr int kHistogramPixels = 8192;  // the crop's histogram samples at least this many
 
 // The detected ellipse as a quadratic form: rho^2 = P dx^2 + 2 Q dx dy + R dy^2 with
 // (dx, dy) from its centre; rho = 1 on the ellipse.
@@ -111,26 +116,77 @@ void binarizeCrop(const cv::Mat& grey, const cv::Rect& crop, int t, cv::Mat& out
   }
 }
 
-// The first x in [x, x1] with row[x] <= level (x1 + 1 if none): whole blocks of 16 pixels
-// are passed over when none of them is that dark.
-int firstAtMost(const std::uint8_t* row, int x, int x1, std::uint8_t level) {
+// The first x in [x, x1] with row[x] <= level (Dark) or row[x] > level (!Dark), x1 + 1 if
+// none: whole blocks of 16 pixels are passed over when none of them qualifies (one SSE2
+// comparison and mask per block: g <= level exactly when min(g, level) == g).
+// The pixels from `lowest` on may be read: the last, partial block is then read as the
+// whole block ending at x1, its pixels before x masked off.
+template <bool Dark>
+int firstOf(const std::uint8_t* row, int x, int x1, std::uint8_t level, int lowest) {
   constexpr int kBlock = 16;
-  std::array<std::uint8_t, kBlock> block{}, dark{};
+#if defined(__SSE2__)
+  const __m128i levels = _mm_set1_epi8(static_cast<char>(level));
+  auto flags = [&](int at) {
+    const __m128i g = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + at));
+    const int mask = _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_min_epu8(g, levels), g));
+    return static_cast<unsigned>(Dark ? mask : mask ^ 0xFFFF);
+  };
+  for (; x + kBlock <= x1 + 1; x += kBlock)
+    if (const unsigned mask = flags(x); mask != 0) return x + std::countr_zero(mask);
+  if (x <= x1 && x1 + 1 - kBlock >= lowest) {
+    const int at = x1 + 1 - kBlock;
+    const unsigned mask = flags(at) & (0xFFFFu << (x - at));
+    return mask != 0 ? at + std::countr_zero(mask) : x1 + 1;
+  }
+#else
+  static_cast<void>(lowest);
+  std::array<std::uint8_t, kBlock> block{}, flag{};
   for (; x + kBlock <= x1 + 1; x += kBlock) {
-    // A per-pixel flag (vectorised like binarizeCrop), then two words tested at once; the
-    // first flagged byte is the answer (byte k of a little-endian word is pixel k).
+    // A per-pixel flag, then two words tested at once; the first flagged byte is the
+    // answer (byte k of a little-endian word is pixel k).
     std::memcpy(block.data(), row + x, kBlock);
-    for (int i = 0; i < kBlock; ++i) dark[i] = block[i] <= level ? 0xFF : 0;
+    for (int i = 0; i < kBlock; ++i) flag[i] = (block[i] <= level) == Dark ? 0xFF : 0;
     std::uint64_t lo = 0, hi = 0;
-    std::memcpy(&lo, dark.data(), 8);
-    std::memcpy(&hi, dark.data() + 8, 8);
+    std::memcpy(&lo, flag.data(), 8);
+    std::memcpy(&hi, flag.data() + 8, 8);
     if ((lo | hi) == 0) continue;
     if constexpr (std::endian::native == std::endian::little)
       return x + (lo != 0 ? std::countr_zero(lo) : 64 + std::countr_zero(hi)) / 8;
     break;
   }
-  while (x <= x1 && row[x] > level) ++x;
+#endif
+  while (x <= x1 && (row[x] <= level) != Dark) ++x;
   return x;
+}
+
+// Sums of g and of i g over the n pixels g = p[i] (n <= 2^15, so the sums fit in 32 bits):
+// with SSE2 sixteen pixels per step, g summed by _mm_sad_epu8 and i g by _mm_madd_epi16.
+void rowMoments(const std::uint8_t* p, int n, int& sumG, int& sumIG) {
+  int i = 0, g = 0, ig = 0;
+#if defined(__SSE2__)
+  const __m128i zero = _mm_setzero_si128(), eight = _mm_set1_epi16(8), sixteen = _mm_set1_epi16(16);
+  __m128i index = _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7);
+  __m128i sums = zero, moments = zero;
+  for (; i + 16 <= n; i += 16) {
+    const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + i));
+    sums = _mm_add_epi64(sums, _mm_sad_epu8(v, zero));
+    moments = _mm_add_epi32(moments, _mm_madd_epi16(_mm_unpacklo_epi8(v, zero), index));
+    moments = _mm_add_epi32(moments, _mm_madd_epi16(_mm_unpackhi_epi8(v, zero), _mm_add_epi16(index, eight)));
+    index = _mm_add_epi16(index, sixteen);
+  }
+  std::array<std::int64_t, 2> s{};
+  std::array<std::int32_t, 4> m{};
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(s.data()), sums);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(m.data()), moments);
+  g = static_cast<int>(s[0] + s[1]);
+  ig = m[0] + m[1] + m[2] + m[3];
+#endif
+  for (; i < n; ++i) {
+    g += p[i];
+    ig += i * p[i];
+  }
+  sumG = g;
+  sumIG = ig;
 }
 
 // One image row or column of 8-bit pixels, indexed by its image coordinate k in
@@ -524,12 +580,18 @@ Status targetCrop(const Ellipse& e, int marginPx, cv::Size imageSize, cv::Rect& 
 }
 
 Status rethresholdCrop(const cv::Mat& grey, const cv::Rect& crop, const ThresholdOptions& rethreshold,
-                       int frameThreshold, FeatureWorkspace& ws, int& threshold) {
+                       int frameThreshold, FeatureWorkspace& ws, int& threshold, bool sampleRows) {
   if (grey.empty() || grey.type() != CV_8UC1) return Status::EmptyFrame;
   if ((crop & cv::Rect(0, 0, grey.cols, grey.rows)) != crop || crop.area() == 0)
     return Status::OutOfImage;
+  // A near target's crop is large; its grey-level distribution, all the threshold and the
+  // class means depend on, is the same on a regular subset of its rows: every k-th row,
+  // at least kHistogramPixels pixels in all. (A view with a k times larger row step.)
+  const int rowStep = sampleRows ? std::max(1, crop.area() / kHistogramPixels) : 1;
   const cv::Mat region = grey(crop);
-  computeHistogram(region, ws.histogram);
+  const cv::Mat sampled((crop.height + rowStep - 1) / rowStep, crop.width, CV_8UC1, region.data,
+                        region.step[0] * static_cast<std::size_t>(rowStep));
+  computeHistogram(sampled, ws.histogram);
   if (rethreshold.method == ThresholdMethod::None) {
     if (frameThreshold < 0 || frameThreshold > 255) return Status::InvalidSettings;
     threshold = frameThreshold;
@@ -593,10 +655,10 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
       const int x1 = std::min(floorToInt(xr), crop.x + crop.width - 1) - crop.x;
       const std::uint8_t* row = grey.ptr<std::uint8_t>(y) + crop.x;
       for (int x = x0; x <= x1;) {
-        x = firstAtMost(row, x, x1, spotLevel);
+        x = firstOf<true>(row, x, x1, spotLevel, -crop.x);
         if (x > x1) break;
         const int start = x;
-        while (x <= x1 && row[x] <= spotLevel) ++x;
+        x = firstOf<false>(row, x, x1, spotLevel, -crop.x);
         const int id = static_cast<int>(runs.size());
         runs.push_back({r, start, x - 1, id});
         for (std::size_t p = prevBegin; p < prevEnd; ++p) {
@@ -681,12 +743,20 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
     for (int y = box.y; y < box.y + box.height; ++y) {
       const std::uint8_t* row = grey.ptr<std::uint8_t>(y);
       int rowN = 0, rowX = 0, rowG = 0, rowXG = 0;
-      for (int x = box.x; x < box.x + box.width; ++x) {
-        if (!boxInside && rim.rho2(x, y) >= rho2Max) continue;
-        ++rowN;
-        rowX += x;
-        rowG += row[x];
-        rowXG += x * row[x];
+      if (boxInside) {
+        int rowIG = 0;
+        rowMoments(row + box.x, box.width, rowG, rowIG);
+        rowN = box.width;
+        rowX = box.width * box.x + box.width * (box.width - 1) / 2;
+        rowXG = box.x * rowG + rowIG;
+      } else {
+        for (int x = box.x; x < box.x + box.width; ++x) {
+          if (rim.rho2(x, y) >= rho2Max) continue;
+          ++rowN;
+          rowX += x;
+          rowG += row[x];
+          rowXG += x * row[x];
+        }
       }
       n += rowN;
       sumX += rowX;

@@ -25,6 +25,11 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
     return s;
   };
   if (grey.empty() || grey.type() != CV_8UC1) return fail(out.steps.crop, Status::EmptyFrame);
+  // The camera model (principal point, focal lengths in pixels, distortion) belongs to one
+  // image size: another size, as from a camera switched to another resolution, would give
+  // a pose that looks valid and is wrong.
+  if (grey.cols != config.camera.width || grey.rows != config.camera.height)
+    return fail(out.steps.crop, Status::FrameSizeMismatch);
 
   const Status cropStatus = targetCrop(detected, config.options.crop_margin_px, grey.size(), out.crop);
   if (!ok(cropStatus)) return fail(out.steps.crop, cropStatus);
@@ -32,7 +37,8 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
 
   FeatureWorkspace& fw = ws.features;
   const Status thresholdStatus =
-      rethresholdCrop(grey, out.crop, config.rethreshold, frameThreshold, fw, out.threshold);
+      rethresholdCrop(grey, out.crop, config.rethreshold, frameThreshold, fw, out.threshold,
+                      config.options.contour_mode == ContourMode::SubPixel);
   if (!ok(thresholdStatus)) return fail(out.steps.threshold, thresholdStatus);
   out.steps.threshold = Status::Ok;
 

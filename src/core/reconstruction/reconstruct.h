@@ -58,7 +58,8 @@ struct ReconstructionConfig {
 ReconstructionConfig reconstructionConfig(const Settings& settings);
 
 // `detected` is the rim's ellipse found by the detection stage in the image as seen;
-// `frameThreshold` the threshold that stage used (for re-threshold None).
+// `frameThreshold` the threshold that stage used (for re-threshold None). A frame whose
+// size is not the camera model's gives FrameSizeMismatch.
 Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey,
                          const Ellipse& detected, int frameThreshold,
                          ReconstructionWorkspace& ws, ReconstructionResult& out);

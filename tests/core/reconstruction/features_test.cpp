@@ -7,6 +7,8 @@
 #include <numeric>
 
 #include "core/reconstruction/pose.h"
+#include "core/segmentation/histogram.h"
+#include "core/segmentation/threshold.h"
 #include "core/source/virtual_renderer.h"
 #include "status_print.h"
 #include "test_scenes.h"
@@ -95,6 +97,43 @@ TEST_F(FeatureTest, RethresholdMethods) {
   EXPECT_EQ(rethresholdCrop(flat, cv::Rect(600, 400, 100, 100), {ThresholdMethod::AtMod, 0}, -1, ws,
                             threshold),
             Status::OutOfImage);
+}
+
+// AT-Orig and AT-Mod on the crop's own histogram: what lies outside the crop (here a bright
+// frame around it) does not move the crop's threshold. A near target's large crop is
+// histogrammed on every k-th row; its threshold stays within a grey level of the whole
+// crop's.
+TEST_F(FeatureTest, RethresholdAtOrigAndAtModOnTheCrop) {
+  for (double z : {800.0, 400.0}) {
+    const Pose pose = makePose(cam, z, 25, 30, 10, 320, 240);
+    const Ellipse e = seenRimEllipse(cam, target, pose);
+    renderTarget(cam, target, scene, pose, image);
+    ASSERT_EQ(targetCrop(e, 4, image.size(), crop), Status::Ok);
+    cv::Mat framed(image.size(), CV_8UC1, cv::Scalar(250));
+    image(crop).copyTo(framed(crop));
+    Histogram whole{};
+    computeHistogram(framed(crop), whole);
+    for (ThresholdMethod method : {ThresholdMethod::AtOrig, ThresholdMethod::AtMod}) {
+      int expected = -1;
+      ASSERT_EQ(computeThreshold({method, 0}, whole, expected), Status::Ok);
+      ASSERT_EQ(rethresholdCrop(framed, crop, {method, 0}, -1, ws, threshold), Status::Ok);
+      EXPECT_GT(threshold, scene.black_level) << z;
+      EXPECT_LT(threshold, scene.white_level) << z;
+      EXPECT_EQ(threshold, expected) << z;
+      // Sampled rows (the sub-pixel mode): the same on a small crop, within a grey level on
+      // a large one.
+      int sampled = -1;
+      ASSERT_EQ(rethresholdCrop(framed, crop, {method, 0}, -1, ws, sampled, true), Status::Ok);
+      if (crop.area() < 2 * 8192)
+        EXPECT_EQ(sampled, expected) << z;
+      else
+        EXPECT_NEAR(sampled, expected, 1) << z << " " << crop.area();
+      // The contour and spots follow from it.
+      ASSERT_EQ(extractContour(ContourMode::FullPathMod, framed, crop, e, ws, points), Status::Ok);
+      SpotFeatures spots;
+      EXPECT_EQ(extractSpots(framed, crop, e, target, ws, spots), Status::Ok);
+    }
+  }
 }
 
 // Full path ORG takes pixel centres: on average inside the rim. MOD puts the points on the
