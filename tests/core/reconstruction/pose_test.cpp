@@ -194,31 +194,44 @@ TEST_F(PoseTest, PolarLineNormalAgreesOnExactData) {
   }
 }
 
-// The claim, measured: with the same noisy rim points and centre spot, the polar
-// line's normal is much worse than the cone's eigen-structure.
+// The eigen-structure against the polar line, with the same noisy rim points. The polar line
+// is exact for the image of the disk's centre, not for the spot's centroid (perspective
+// moves it): it is given that image itself plus the centroid's noise, so what differs is
+// the sensitivity to noise alone. Near fronto-parallel the eigen-structure is
+// ill-conditioned too and the gap narrows (docs/accuracy.md: about 4x on the median, 1.3x
+// on the 95th percentile there); beyond 15 deg it is an order of magnitude.
 TEST_F(PoseTest, EigenNormalIsMoreRobustToNoiseThanThePolarLine) {
   std::normal_distribution<double> noise(0.0, 0.3);
-  std::vector<double> eigenErr, polarErr;
-  for (int i = 0; i < 300; ++i) {
+  std::vector<double> eigenNear, polarNear, eigenFar, polarFar;
+  for (int i = 0; i < 600; ++i) {
     const Pose truth = randomPose();
     std::vector<Eigen::Vector2d> pts = rimPoints(cam, target, truth, 200);
     for (auto& p : pts) p += Eigen::Vector2d(noise(rng), noise(rng));
     const Conic rim = fitConic(pts);
     const ExactImage im = exactImage(cam, target, truth);
-    const Eigen::Vector2d centreSpot = im.centreSpot + Eigen::Vector2d(noise(rng), noise(rng)) * 0.2;
+    const Eigen::Vector2d spotNoise = Eigen::Vector2d(noise(rng), noise(rng)) * 0.2;
     Pose est;
-    ASSERT_EQ(poseFromEllipse(cam, target, rim, centreSpot, im.offsetSpot, est), Status::Ok);
+    ASSERT_EQ(poseFromEllipse(cam, target, rim, im.centreSpot + spotNoise, im.offsetSpot, est), Status::Ok);
     Eigen::Vector3d n;
-    ASSERT_EQ(normalFromPolarLine(cam, rim, centreSpot, n), Status::Ok);
+    ASSERT_EQ(normalFromPolarLine(cam, rim, projectIdeal(cam, translation(truth)) + spotNoise, n), Status::Ok);
     const Eigen::Vector3d truthN = rotationMatrix(truth).col(2);
-    eigenErr.push_back(std::acos(std::min(1.0, rotationMatrix(est).col(2).dot(truthN))) / kDeg);
-    polarErr.push_back(std::acos(std::min(1.0, n.dot(truthN))) / kDeg);
+    const bool near = testing::viewAngleDeg(truth) < 15.0;
+    (near ? eigenNear : eigenFar).push_back(std::acos(std::min(1.0, rotationMatrix(est).col(2).dot(truthN))) / kDeg);
+    (near ? polarNear : polarFar).push_back(std::acos(std::min(1.0, n.dot(truthN))) / kDeg);
   }
-  auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  };
-  EXPECT_LT(5.0 * median(eigenErr), median(polarErr));
+  using testing::quantile;
+  std::printf("normal error, eigen / polar line: 0-15 deg (%zu poses) median %.3f / %.3f, p95 %.3f / %.3f; "
+              "15-60 deg (%zu poses) median %.3f / %.3f, p95 %.3f / %.3f\n",
+              eigenNear.size(), quantile(eigenNear, 0.5), quantile(polarNear, 0.5), quantile(eigenNear, 0.95),
+              quantile(polarNear, 0.95), eigenFar.size(), quantile(eigenFar, 0.5), quantile(polarFar, 0.5),
+              quantile(eigenFar, 0.95), quantile(polarFar, 0.95));
+  ASSERT_GT(eigenNear.size(), 20u);
+  // Beyond 15 deg: about an order of magnitude (measured 10x on both).
+  EXPECT_GT(quantile(polarFar, 0.5), 7.0 * quantile(eigenFar, 0.5));
+  EXPECT_GT(quantile(polarFar, 0.95), 7.0 * quantile(eigenFar, 0.95));
+  // Near fronto-parallel: still worse, by much less (measured 2.8x and 2.7x here).
+  EXPECT_GT(quantile(polarNear, 0.5), 2.0 * quantile(eigenNear, 0.5));
+  EXPECT_GT(quantile(polarNear, 0.95), 1.2 * quantile(eigenNear, 0.95));
 }
 
 TEST_F(PoseTest, SingularConics) {
