@@ -324,6 +324,23 @@ TEST(CalibrationCoverage, AnA4SheetTooFarAwayIsPoorCoverage) {
   }
 }
 
+// The A4 sheet from 1200 mm: its spots reach a quarter of the way to the corners, and the
+// first fit over them is already no lens (it folds the image's corners).
+TEST(CalibrationCoverage, AnA4SheetFarTooFarAwayDiverges) {
+  Settings settings;
+  settings.pattern.columns = 11;
+  settings.pattern.rows = 7;
+  const auto images = testing::renderViews(settings, kThesisCameraDistortion, recommendedCalibrationViews(1200.0),
+                                           testing::realisticScene());
+  CalibrationResult r;
+  EXPECT_EQ(calibrateDistortion(settings, images, r), Status::Diverged);
+  EXPECT_FALSE(r.converged);
+  ASSERT_FALSE(r.history.empty());
+  EXPECT_LT(r.iterations, settings.pipeline.calibration.max_iterations);  // not the iteration limit
+  EXPECT_FALSE(distortionPlausible(settings.camera, r.history.back().distortion));
+  for (const CalibrationImageReport& im : r.images) EXPECT_EQ(im.status, Status::Ok);
+}
+
 TEST_F(CalibrationProcedure, NoImagesAndEmptyImages) {
   CalibrationResult r;
   EXPECT_EQ(calibrateDistortion(settings_, std::span<const cv::Mat>(), r, {}, truePoses(images_, poses_)),
