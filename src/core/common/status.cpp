@@ -34,7 +34,6 @@ StatusText text(Status s) {
     case Status::NormalFacingAway: return {"NormalFacingAway", "the reconstructed target faces away from the camera"};
     case Status::OutOfImage: return {"OutOfImage", "the target or region lies outside the image"};
     case Status::FrameSizeMismatch: return {"FrameSizeMismatch", "the frame's size differs from the camera model's: calibrate the camera at this resolution or set its size in the settings"};
-    case Status::FrameSizeMismatch: return {"FrameSizeMismatch", "the frame's size differs from the camera model's: calibrate the camera at this resolution or set its size in the settings"};
     case Status::CameraNotFound: return {"CameraNotFound", "no camera device at that path"};
     case Status::CameraPermissionDenied: return {"CameraPermissionDenied", "permission denied opening the camera"};
     case Status::CameraBusy: return {"CameraBusy", "the camera is in use by another program"};

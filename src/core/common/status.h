@@ -36,7 +36,6 @@ enum class Status : std::uint8_t {
   NormalFacingAway,
   OutOfImage,
   FrameSizeMismatch,   // the frame's size differs from the camera model's: its pose would be wrong
-  FrameSizeMismatch,   // the frame's size differs from the camera model's: its pose would be wrong
   // camera
   CameraNotFound,
   CameraPermissionDenied,
