@@ -25,13 +25,27 @@ struct Box {
   bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < w && y < h; }
 };
 
-// Adds a vote to every cell on the ray from m along u (unit), clipped to the box.
-// Steps of one cell along the dominant axis, so no cell is counted twice.
-inline void voteRay(std::uint32_t* acc, const Box& box, double mx, double my, double ux, double uy) {
+// std::llround (halves away from zero) without the library call, for |v| < 2^62: v
+// minus its truncation is exact, so the result is the same integer.
+inline std::int64_t roundHalfAway(double v) {
+  std::int64_t t = static_cast<std::int64_t>(v);
+  const double frac = v - static_cast<double>(t);
+  if (frac >= 0.5) ++t;
+  if (frac <= -0.5) --t;
+  return t;
+}
+
+// The cells of a ray that lie in the box: cell i (0 <= i < count) is
+// ((x + i sx) >> 16, (y + i sy) >> 16) in 16.16 fixed point.
+using Ray = BennettWorkspace::Ray;
+
+// The ray from m along u (unit), clipped to the box, in steps of one cell along the
+// dominant axis, so no cell is counted twice. False when no cell is in the box.
+inline bool clipRay(const Box& box, double mx, double my, double ux, double uy, Ray& ray) {
   double tmax = std::numeric_limits<double>::infinity();
   // The box in cell-centre coordinates: [0, w-1] x [0, h-1], widened by half a cell.
   const double lo_x = -0.5, hi_x = box.w - 0.5, lo_y = -0.5, hi_y = box.h - 0.5;
-  if (mx < lo_x || mx > hi_x || my < lo_y || my > hi_y) return;
+  if (mx < lo_x || mx > hi_x || my < lo_y || my > hi_y) return false;
   if (ux > 0) tmax = std::min(tmax, (hi_x - mx) / ux);
   if (ux < 0) tmax = std::min(tmax, (lo_x - mx) / ux);
   if (uy > 0) tmax = std::min(tmax, (hi_y - my) / uy);
@@ -40,16 +54,48 @@ inline void voteRay(std::uint32_t* acc, const Box& box, double mx, double my, do
   const int steps = static_cast<int>(tmax / step);
   // 16.16 fixed point, offset by half a cell so that truncation rounds to the nearest cell.
   constexpr double kOne = 65536.0;
-  std::int64_t x = static_cast<std::int64_t>((mx + 0.5) * kOne), y = static_cast<std::int64_t>((my + 0.5) * kOne);
-  const std::int64_t sx = static_cast<std::int64_t>(std::llround(ux * step * kOne));
-  const std::int64_t sy = static_cast<std::int64_t>(std::llround(uy * step * kOne));
+  const std::int64_t x = static_cast<std::int64_t>((mx + 0.5) * kOne), y = static_cast<std::int64_t>((my + 0.5) * kOne);
+  const std::int64_t sx = roundHalfAway(ux * step * kOne);
+  const std::int64_t sy = roundHalfAway(uy * step * kOne);
   const unsigned w = static_cast<unsigned>(box.w), h = static_cast<unsigned>(box.h);
-  for (int i = 0; i <= steps; ++i, x += sx, y += sy) {
-    const unsigned cx = static_cast<unsigned>(x >> 16), cy = static_cast<unsigned>(y >> 16);
-    if (cx < w && cy < h) ++acc[cy * w + cx];  // fails only by rounding at the box edge
-  }
+  // Steps 0..steps, those inside the box counted. Both coordinates are monotonic in the
+  // step, so the steps inside form one run: its ends are found here (rounding at the
+  // box edge moves them by a cell at most) and the run is counted without tests.
+  auto inside = [&](int i) {
+    const unsigned cx = static_cast<unsigned>((x + i * sx) >> 16), cy = static_cast<unsigned>((y + i * sy) >> 16);
+    return cx < w && cy < h;
+  };
+  int first = 0, last = steps;
+  while (first <= last && !inside(first)) ++first;
+  while (last >= first && !inside(last)) --last;
+  if (first > last) return false;
+  ray = Ray{x + first * sx, y + first * sy, sx, sy, last - first + 1};
+  return true;
 }
 
+// Adds a vote to every cell of each ray.
+void voteRays(std::uint32_t* acc, const Box& box, std::span<const Ray> rays) {
+  constexpr std::int64_t kCell = 65536;
+  const std::ptrdiff_t stride = box.w;
+  for (const Ray& r : rays) {
+    if (r.sx == kCell || r.sx == -kCell) {
+      // One column per step: the column moves by one, the row follows y.
+      std::ptrdiff_t column = static_cast<std::ptrdiff_t>(r.x >> 16);
+      const std::ptrdiff_t dir = r.sx > 0 ? 1 : -1;
+      std::int64_t y = r.y;
+      for (int i = 0; i < r.count; ++i, column += dir, y += r.sy) ++acc[(y >> 16) * stride + column];
+    } else if (r.sy == kCell || r.sy == -kCell) {
+      // One row per step.
+      std::ptrdiff_t row = static_cast<std::ptrdiff_t>(r.y >> 16) * stride;
+      const std::ptrdiff_t dir = r.sy > 0 ? stride : -stride;
+      std::int64_t x = r.x;
+      for (int i = 0; i < r.count; ++i, row += dir, x += r.sx) ++acc[row + (x >> 16)];
+    } else {
+      std::int64_t x = r.x, y = r.y;
+      for (int i = 0; i < r.count; ++i, x += r.sx, y += r.sy) ++acc[(y >> 16) * stride + (x >> 16)];
+    }
+  }
+}
 
 // Samples `keep` of the `usable` pixels (those with a gradient) and accumulates every
 // pair's ray into ws.accumulator over `box`; returns the pairs that voted. The sample is
@@ -71,15 +117,32 @@ std::size_t accumulatePairs(std::span<const EdgePixel> path, std::size_t usable,
   ws.accumulator.assign(static_cast<std::size_t>(box.w) * box.h, 0u);
   std::uint32_t* acc = ws.accumulator.data();
   const std::size_t m = ws.sample.size();
-  std::size_t pairs = 0;
+  // The sampled pixels in box coordinates, as doubles, with the right-hand side c of
+  // their tangent line g . X = c: converted once, not once per pair.
+  ws.points.resize(m);
   for (std::size_t i = 0; i < m; ++i) {
     const EdgePixel& a = path[ws.sample[i]];
-    const double x1 = a.x - box.x0, y1 = a.y - box.y0;
+    BennettWorkspace::Point& q = ws.points[i];
+    q.x = a.x - box.x0;
+    q.y = a.y - box.y0;
+    q.gx = a.gx;
+    q.gy = a.gy;
+    q.c = q.gx * q.x + q.gy * q.y;
+  }
+  // The rays of one pixel's pairs are clipped first and counted after: the clipping's
+  // chain of divisions for one pair then overlaps the next pair's instead of waiting
+  // for a counting loop.
+  ws.rays.resize(m);
+  std::size_t pairs = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    std::size_t rays = 0;
+    const BennettWorkspace::Point& a = ws.points[i];
+    const double x1 = a.x, y1 = a.y;
     const double g1x = a.gx, g1y = a.gy;
-    const double c1 = g1x * x1 + g1y * y1;  // tangent line I1: g1 . X = c1
+    const double c1 = a.c;  // tangent line I1: g1 . X = c1
     for (std::size_t j = i + 1; j < m; ++j) {
-      const EdgePixel& b = path[ws.sample[j]];
-      const double x2 = b.x - box.x0, y2 = b.y - box.y0;
+      const BennettWorkspace::Point& b = ws.points[j];
+      const double x2 = b.x, y2 = b.y;
       const double g2x = b.gx, g2y = b.gy;
       const double dx = x2 - x1, dy = y2 - y1;
       // Both gradients must point across the chord to the same side of the curve:
@@ -90,18 +153,19 @@ std::size_t accumulatePairs(std::span<const EdgePixel> path, std::size_t usable,
       const double det = g1x * g2y - g1y * g2x;
       ++pairs;
       if (det == 0.0) {  // parallel tangents: every ellipse of the family is centred at M
-        const int cx = static_cast<int>(std::lround(mx)), cy = static_cast<int>(std::lround(my));
+        const int cx = static_cast<int>(roundHalfAway(mx)), cy = static_cast<int>(roundHalfAway(my));
         if (box.contains(cx, cy)) ++acc[static_cast<std::size_t>(cy) * box.w + cx];
         continue;
       }
-      const double c2 = g2x * x2 + g2y * y2;
+      const double c2 = b.c;
       const double tx = (c1 * g2y - c2 * g1y) / det, ty = (g1x * c2 - g2x * c1) / det;
       const double ux = mx - tx, uy = my - ty;
       const double len2 = ux * ux + uy * uy;
       if (!(len2 > 1e-18)) continue;
       const double inv = 1.0 / std::sqrt(len2);
-      voteRay(acc, box, mx, my, ux * inv, uy * inv);
+      rays += clipRay(box, mx, my, ux * inv, uy * inv, ws.rays[rays]);
     }
+    voteRays(acc, box, std::span<const Ray>(ws.rays.data(), rays));
   }
   return pairs;
 }

@@ -24,8 +24,10 @@
 //    empty. A peak within two cells of the box's centre is taken at the centre (the
 //    rays' rounding moves the peak of a symmetric path by a cell); a peak elsewhere
 //    loses its symmetry where the mirrored cells leave the box;
-//  * a path longer than max_points is subsampled evenly to max_points pixels and each
-//    vote weighs (n (n-1)) / (m (m-1)), so scores estimate the all-pairs score.
+//  * a path with more than max_points pixels with a gradient votes with a uniformly
+//    random sample of max_points of them (fixed seed; not an even stride, which would
+//    take one front of a contour listed breadth first) and each vote weighs
+//    (n (n-1)) / (m (m-1)), so scores estimate the all-pairs score.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -49,7 +51,16 @@ struct BennettResult {
 };
 
 struct BennettWorkspace {
+  struct Point {
+    double x, y, gx, gy, c;  // a sampled pixel in box coordinates; its tangent line g . X = c
+  };
+  struct Ray {
+    std::int64_t x, y, sx, sy;  // first cell and step, 16.16 fixed point
+    int count;                  // cells
+  };
   std::vector<std::uint32_t> accumulator;  // votes per cell
+  std::vector<Point> points;               // the sampled pixels
+  std::vector<Ray> rays;                   // the clipped rays of one pixel's pairs
   std::vector<std::uint32_t> sample;  // indices of the sampled path pixels
   std::vector<double> rings;           // per-ring sums about the peak
 };
