@@ -122,7 +122,7 @@ Status calibrateDistortion(const Settings& settings, std::span<const cv::Mat> im
     const bool cameraSize = images[i].cols == settings.camera.width && images[i].rows == settings.camera.height;
     state[i].spotStatus = images[i].empty() || cameraSize
                               ? findPatternSpots(images[i], settings.pipeline.threshold, finder, state[i].observed)
-                              : Status::InvalidSettings;
+                              : Status::FrameSizeMismatch;
     result.images[i].status = state[i].spotStatus;
     result.images[i].spots_found = static_cast<int>(state[i].observed.size());
   }

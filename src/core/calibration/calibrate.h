@@ -21,7 +21,7 @@
 //     options.relative_change (thesis: 0.01; distortion_fit.h says how it is measured).
 //
 // Errors, per image (the image is reported and left out of that iteration, the others go
-// on): EmptyFrame, InvalidSettings (not the size of the settings' camera), the spot
+// on): EmptyFrame, FrameSizeMismatch (not the size of the settings' camera), the spot
 // threshold's error, the target's detection or reconstruction error (NoTarget, ...), TooFewMatches
 // (fewer than options.min_matches spots matched: no pattern around the target),
 // MatchAmbiguity (more than options.max_ambiguous_fraction of the spots ambiguous).

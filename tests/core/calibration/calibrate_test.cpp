@@ -347,6 +347,10 @@ TEST_F(CalibrationProcedure, NoImagesAndEmptyImages) {
             Status::TooFewMatches);
   const std::vector<cv::Mat> empty{cv::Mat()};
   EXPECT_EQ(calibrateDistortion(settings_, empty, r, {}, truePoses(images_, poses_)), Status::EmptyFrame);
+  // An image of another size than the settings' camera is named as such.
+  const std::vector<cv::Mat> half{cv::Mat(240, 320, CV_8UC1, cv::Scalar(128))};
+  EXPECT_EQ(calibrateDistortion(settings_, half, r, {}, truePoses(images_, poses_)), Status::FrameSizeMismatch);
+  EXPECT_EQ(r.images[0].status, Status::FrameSizeMismatch);
 }
 
 }  // namespace
