@@ -178,9 +178,12 @@ Summary summarise(const std::vector<Outcome>& outcomes, double tiltLo, double ti
   return s;
 }
 
+// A figure of a table, "-" where there was nothing to measure (a tilt band without frames).
+std::string cell(double v, const char* fmt = "%.3f") { return std::isnan(v) ? std::string("-") : format(fmt, v); }
+
 std::string summaryCells(const Summary& s) {
-  return format("%d | %.1f %% | %.3f | %.3f | %.3f | %.3f", s.n, s.n ? 100.0 * s.found / s.n : 0.0, s.rotMedian,
-                s.rotP95, s.posMedian, s.posP95);
+  return format("%d | %.1f %% | ", s.n, s.n ? 100.0 * s.found / s.n : 0.0) + cell(s.rotMedian) + " | " +
+         cell(s.rotP95) + " | " + cell(s.posMedian) + " | " + cell(s.posP95);
 }
 
 double normalErrorDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
@@ -408,7 +411,9 @@ int run(const Args& args) {
         "(*missed* marks a figure over its goal):\n\n";
   md += "| tilt (deg) | distortion | rotation median (goal <= 0.1 deg) | rotation p95 (goal <= 0.5 deg) | position "
         "median (goal <= 0.1 %) |\n| --- | --- | ---: | ---: | ---: |\n";
-  auto mark = [](double v, double goal) { return format(v <= goal ? "%.3f" : "%.3f (missed)", v); };
+  auto mark = [](double v, double goal) {
+    return std::isnan(v) ? std::string("-") : format(v <= goal ? "%.3f" : "%.3f (missed)", v);
+  };
   std::string missed;
   for (std::size_t b = 0; b + 1 < kTiltBands.size(); ++b) {
     std::string bandMissed;
@@ -494,11 +499,12 @@ int run(const Args& args) {
       }
     const double medianRatio = quantile(p, 0.5) / quantile(e, 0.5);
     const double p95Ratio = quantile(p, 0.95) / quantile(e, 0.95);
-    md += format("| %.0f-%.0f | %zu | %.3f | %.3f | %.3f | %.3f | %.1fx | %.1fx | %.3f |\n", kTiltBands[b],
-                 kTiltBands[b + 1], e.size(), quantile(e, 0.5), quantile(e, 0.95), quantile(p, 0.5),
-                 quantile(p, 0.95), medianRatio, p95Ratio, quantile(raw, 0.5));
-    ratios += format("%s%.0f-%.0f deg: %.1fx on the median, %.1fx on the 95th percentile", ratios.empty() ? "" : "; ",
-                     kTiltBands[b], kTiltBands[b + 1], medianRatio, p95Ratio);
+    md += format("| %.0f-%.0f | %zu | ", kTiltBands[b], kTiltBands[b + 1], e.size()) + cell(quantile(e, 0.5)) +
+          " | " + cell(quantile(e, 0.95)) + " | " + cell(quantile(p, 0.5)) + " | " + cell(quantile(p, 0.95)) + " | " +
+          cell(medianRatio, "%.1fx") + " | " + cell(p95Ratio, "%.1fx") + " | " + cell(quantile(raw, 0.5)) + " |\n";
+    if (!e.empty())
+      ratios += format("%s%.0f-%.0f deg: %.1fx on the median, %.1fx on the 95th percentile",
+                       ratios.empty() ? "" : "; ", kTiltBands[b], kTiltBands[b + 1], medianRatio, p95Ratio);
   }
   md += "\nPolar line against eigen-structure, by band: " + ratios + ".\n\n";
   md += distortionSection();

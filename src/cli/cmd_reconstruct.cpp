@@ -1,5 +1,7 @@
 // imagepro-cli reconstruct: the whole pipeline over images or the virtual source,
 // one pose row per frame in the CSV format of ARCHITECTURE.md (or JSON).
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 
 #include "cli/command.h"
@@ -12,22 +14,23 @@
 namespace imagepro::cli {
 namespace {
 
-std::string jsonNumber(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6f", v);
-  return buf;
-}
-
-std::string jsonRow(const FrameResult& r) {
-  std::string s = "{\"frame\": \"" + (r.name.empty() ? std::to_string(r.index) : r.name) + "\", \"status\": \"" +
-                  std::string(statusName(r.status)) + "\"";
+// One frame as a JSON object on one line. The library escapes the frame's name (quotes,
+// backslashes, control characters); bytes that are not UTF-8 become U+FFFD rather than
+// invalid JSON.
+std::string jsonRow(const std::string& frame, const FrameResult& r) {
+  nlohmann::ordered_json row;
+  row["frame"] = frame;
+  row["status"] = std::string(statusName(r.status));
   if (ok(r.status) && r.pose) {
     const Pose& p = *r.pose;
-    s += ", \"Rx_deg\": " + jsonNumber(p.rx_deg) + ", \"Ry_deg\": " + jsonNumber(p.ry_deg) +
-         ", \"Rz_deg\": " + jsonNumber(p.rz_deg) + ", \"Tx_mm\": " + jsonNumber(p.tx_mm) +
-         ", \"Ty_mm\": " + jsonNumber(p.ty_mm) + ", \"Tz_mm\": " + jsonNumber(p.tz_mm);
+    row["Rx_deg"] = p.rx_deg;
+    row["Ry_deg"] = p.ry_deg;
+    row["Rz_deg"] = p.rz_deg;
+    row["Tx_mm"] = p.tx_mm;
+    row["Ty_mm"] = p.ty_mm;
+    row["Tz_mm"] = p.tz_mm;
   }
-  return s + "}";
+  return row.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
 
 int run(const Args& args) {
@@ -77,7 +80,7 @@ int run(const Args& args) {
       }
       std::printf("%s\n", poseCsvRow(frame, result.status, result.pose, extra).c_str());
     } else {
-      std::printf("%s\n  %s", first ? "" : ",", jsonRow(result).c_str());
+      std::printf("%s\n  %s", first ? "" : ",", jsonRow(frame, result).c_str());
     }
     first = false;
     if (!ok(result.status) && !source->lastError().empty())
