@@ -23,12 +23,15 @@
 // they trace less, the pixels of other white paths on the same ellipse join them (an
 // occluder across the disk cuts its outline into several paths). Only paths whose plain
 // fit gave an ellipse holding (grown by half) a pair of dark paths shaped like the
-// spots, not a found target's, are refitted, so the common frame runs no consensus. Paths are fitted lazily: detectTarget first fits only white paths with two
-// spot-sized dark paths inside their bounding box, and traces the contour only of an
-// ellipse that holds the spots; detectEllipses fits every path. Two or more targets give AmbiguousTarget
-// (both reported) unless report_all_targets. Without any target, the thesis's rule picks
-// the best ellipse (lowest error, or highest Bennett score), preferring ellipses that
-// hold any dark path over plain disks, unless require_target_spots.
+// spots, not a found target's, are refitted, so the common frame runs no consensus.
+// Paths are fitted lazily: detectTarget fits only white paths with two spot-sized dark
+// paths inside their bounding box, smallest box first, skipping a path whose box holds
+// no spots but a found target's, and traces the contour only of an ellipse that holds
+// the spots; detectEllipses fits every path. Two or more targets give AmbiguousTarget
+// (all reported, in path order) unless report_all_targets. Without any target, the
+// thesis's rule picks the best ellipse (lowest error, or highest Bennett score),
+// preferring ellipses that hold any dark path over plain disks, unless
+// require_target_spots.
 #include <opencv2/core.hpp>
 
 #include <array>
