@@ -61,6 +61,7 @@ void BM_CropToPose(benchmark::State& state) {
     benchmark::DoNotOptimize(result.pose);
   }
   state.counters["points"] = static_cast<double>(result.contour.size());
+  state.counters["crop_px"] = static_cast<double>(result.crop.area());
 }
 // (distance mm, contour mode, re-threshold AT-Mod 1 / None 0): every mode at 800 mm; the
 // default mode near and far, and without its own re-threshold.

@@ -90,7 +90,7 @@ Status targetCrop(const Ellipse& detected, int marginPx, cv::Size imageSize, cv:
 // The crop's threshold, from its own histogram (ThresholdUndefined on a flat crop), or with
 // None the frame's own threshold `frameThreshold` (InvalidSettings when that is negative).
 // The binary crop itself is made by extractContour for the modes that read it.
-// `sampleRows`: a crop of more than 2 x 8192 pixels is histogrammed on every k-th row (at
+// `sampleRows`: a crop of at least 2 x 8192 pixels is histogrammed on every k-th row (at
 // least 8192 pixels), for the sub-pixel mode, which takes only its class means and a
 // starting point from the threshold; the pixel modes, whose points the threshold places,
 // histogram the whole crop.
