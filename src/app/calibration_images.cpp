@@ -43,7 +43,7 @@ void analyseCalibrationImage(const Settings& settings, CalibrationImage& image) 
     return;
   }
   if (image.grey.cols != camera.width || image.grey.rows != camera.height) {
-    image.first.status = Status::InvalidSettings;
+    image.first.status = Status::FrameSizeMismatch;
     return;
   }
   SpotFinderWorkspace finder;
@@ -102,7 +102,7 @@ QString poseText(const Pose& p) {
 // What the user can do about an image's error.
 QString remedy(const CalibrationImage& image, const CalibrationImageReport& r) {
   switch (r.status) {
-    case Status::InvalidSettings:
+    case Status::FrameSizeMismatch:
       return QObject::tr("The image is %1 x %2 px, the settings' camera %3 x %4: open an image of this camera or "
                          "change the camera in Settings.")
           .arg(image.grey.cols)

@@ -37,6 +37,9 @@ QString runRemedy(Status status) {
     case Status::Diverged:
       return QObject::tr("The estimate stopped being a plausible lens, or did not settle within the iterations "
                          "allowed: check each image's matches.");
+    case Status::PoorCoverage:
+      return QObject::tr("The matched spots reach only %1 of the way to the image's corners (at least 0.6 is needed "
+                         "to calibrate the corners): move the pattern closer or print it larger.");
     case Status::DegenerateFit:
       return QObject::tr("The matched spots do not determine k1, k2, p1 and p2: use more images, with the pattern "
                          "filling each one.");
@@ -255,7 +258,9 @@ void CalibrationWizard::onRunUpdate(const CalibrationRunUpdate& update) {
                      .arg(r.images.size()),
                  false);
   } else {
-    setRunStatus(tr("Calibration failed: %1. %2").arg(statusInWords(r.status), runRemedy(r.status)), true);
+    QString remedy = runRemedy(r.status);
+    if (r.status == Status::PoorCoverage) remedy = remedy.arg(r.coverage_radius_fraction, 0, 'f', 2);
+    setRunStatus(tr("Calibration failed: %1. %2").arg(statusInWords(r.status), remedy), true);
   }
   for (int i = 0; i < kCalibrationSlots; ++i) refreshSlot(i);
   showField();

@@ -104,6 +104,7 @@ class CalibrationWizardTest : public QObject {
   void cleanup();
   void recoversTheLensFromVirtualPatternImages();
   void problemsAreNamedPerImageAndForTheRun();
+  void aPatternTooSmallForTheImageIsRefused();
   void captureTakesTheRunningSourcesFrame();
   void panelAndMenuOpenTheWizard();
   void closingOrCancellingWhileRunningIsSafe();

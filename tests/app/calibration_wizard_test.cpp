@@ -206,7 +206,7 @@ void CalibrationWizardTest::problemsAreNamedPerImageAndForTheRun() {
   QVERIFY(small.save(dir + QStringLiteral("/small.png")));
   wizard.openImage(1, dir + QStringLiteral("/small.png"));
   QTRY_VERIFY_WITH_TIMEOUT(!wizard.isAnalysing(), 20000);
-  QVERIFY2(wizard.slotStatus(1).contains(QStringLiteral("InvalidSettings")), qPrintable(wizard.slotStatus(1)));
+  QVERIFY2(wizard.slotStatus(1).contains(QStringLiteral("FrameSizeMismatch")), qPrintable(wizard.slotStatus(1)));
   QVERIFY(wizard.slotStatus(1).contains(QStringLiteral("320 x 240 px, the settings' camera 640 x 480")));
   wizard.clearImage(1);
   QVERIFY(!wizard.hasImage(1));
@@ -235,6 +235,33 @@ void CalibrationWizardTest::problemsAreNamedPerImageAndForTheRun() {
   wizard.setAndUse();
   QCOMPARE(w.settings().camera.distortion.k1, before.k1);
   QVERIFY(wizard.slotStatus(2).contains(QStringLiteral("Left out of the calibration: TooFewMatches")));
+}
+
+// An A4 page's grid (11 x 7 spots) seen from the wizard's 800 mm covers only the middle
+// of the image: the run is refused with PoorCoverage and what to do, never an estimate
+// that is wrong in the corners, and Set and Use stays off.
+void CalibrationWizardTest::aPatternTooSmallForTheImageIsRefused() {
+  MainWindow& w = *window_;
+  Settings small_sheet = w.settings();
+  small_sheet.camera.distortion = kThesisCameraDistortion;
+  small_sheet.pattern.columns = 11;
+  small_sheet.pattern.rows = 7;
+  w.setSettings(small_sheet);
+  CalibrationWizard& wizard = showCalibrationWizard(w);
+  QVERIFY(renderAll(wizard));
+  QSignalSpy finished(&wizard, &CalibrationWizard::calibrationFinished);
+  wizard.calibrate();
+  QVERIFY(finished.wait(60000));
+  QCOMPARE(finished.first().at(0).toBool(), false);
+  const CalibrationResult* r = wizard.result();
+  QVERIFY(r);
+  QVERIFY2(r->status == Status::PoorCoverage, statusName(r->status).data());
+  QVERIFY(r->coverage_radius_fraction > 0.0 && r->coverage_radius_fraction < 0.6);
+  QVERIFY2(wizard.runStatus().contains(QStringLiteral("Calibration failed: PoorCoverage")),
+           qPrintable(wizard.runStatus()));
+  QVERIFY(wizard.runStatus().contains(QStringLiteral("move the pattern closer or print it larger")));
+  QVERIFY(wizard.runStatus().contains(QString::number(r->coverage_radius_fraction, 'f', 2)));
+  QVERIFY(!wizard.findChild<QPushButton*>(QStringLiteral("setAndUse"))->isEnabled());
 }
 
 void CalibrationWizardTest::captureTakesTheRunningSourcesFrame() {
