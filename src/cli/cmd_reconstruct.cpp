@@ -1,5 +1,5 @@
 // imagepro-cli reconstruct: the whole pipeline over images or the virtual source,
-// one pose row per frame in the CSV format of ARCHITECTURE.md (or JSON).
+// one pose row per frame in the CSV format of docs/conventions.md (or JSON).
 #include <nlohmann/json.hpp>
 
 #include <cstdio>

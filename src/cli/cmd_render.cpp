@@ -1,6 +1,6 @@
 // imagepro-cli render: frames of the Virtual perspective projection source (thesis
 // 2.2) as PNG files, with their exact poses in truth.csv (the pose CSV of
-// ARCHITECTURE.md, frame = PNG file name, so reconstruct's output compares row by row).
+// docs/conventions.md, frame = PNG file name, so reconstruct's output compares row by row).
 #include <chrono>
 #include <cstdio>
 #include <filesystem>

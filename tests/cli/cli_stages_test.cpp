@@ -92,7 +92,7 @@ TEST(CliRender, FramesAndTruthCsvAtTheAskedPose) {
 
   const auto rows = lines(readFile(dir / "truth.csv"));
   ASSERT_EQ(rows.size(), 4u);
-  // ARCHITECTURE.md's pose CSV, then render's own column.
+  // docs/conventions.md's pose CSV, then render's own column.
   EXPECT_EQ(rows[0], "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,in_view");
   const double asked[6] = {0, 0, 20, 30, -15, 700};
   for (int i = 0; i < 3; ++i) {

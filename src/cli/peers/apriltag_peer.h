@@ -20,7 +20,7 @@ class AprilTagPeer {
   AprilTagPeer& operator=(const AprilTagPeer&) = delete;
 
   // Paints tag 0 (with its white border) into `frame` as the camera sees it at `pose`
-  // (pose convention of ARCHITECTURE.md, the tag centred on the target's origin).
+  // (pose convention of docs/conventions.md, the tag centred on the target's origin).
   void drawTag(const Pose& pose, cv::Mat& frame) const;
   // Detects the tag and estimates its pose; NoTarget when not found.
   Status detect(const cv::Mat& grey, Pose& out);

@@ -1,5 +1,5 @@
 #pragma once
-// Reads a reconstructed sequence back from the pose CSV of ARCHITECTURE.md (the output
+// Reads a reconstructed sequence back from the pose CSV of docs/conventions.md (the output
 // of `imagepro-cli reconstruct`, or data out with its timestamp_s column), for the
 // case studies. Columns are found by their header names, so more columns may follow
 // in any order; a row whose status is not "ok" is a frame without a pose.

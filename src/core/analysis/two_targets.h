@@ -9,7 +9,7 @@
 // the edge towards the camera (a convex corner, so neither card hides the other).
 // In the object frame the two target centres lie at (-spacing / 2, 0, 0) and
 // (+spacing / 2, 0, 0), the left target turned by +angle / 2 about Y and the right one
-// by -angle / 2 (target +Z points into the object, ARCHITECTURE.md), so their normals
+// by -angle / 2 (target +Z points into the object, docs/conventions.md), so their normals
 // are `angle` apart and each faces the camera when the object does. The object's
 // pose maps the object frame to the camera frame like a target's pose.
 #include <opencv2/core.hpp>

@@ -1,6 +1,6 @@
 #pragma once
 // The calibration file: what the lens distortion calibration (thesis 4.6) leaves behind for
-// later runs. It is the "camera" section of the settings JSON (ARCHITECTURE.md) carrying the
+// later runs. It is the "camera" section of the settings JSON (docs/conventions.md) carrying the
 // distortion found, so any settings reader takes it (the keys it lacks keep their defaults):
 // `imagepro-cli --config FILE`, the application's Load Settings. Written by the CLI's
 // calibrate command and by the application's calibration wizard.

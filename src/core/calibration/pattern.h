@@ -1,5 +1,5 @@
 #pragma once
-// The calibration pattern of thesis 4.3 (fig. 4.6), as ARCHITECTURE.md fixes it: a white
+// The calibration pattern of thesis 4.3 (fig. 4.6), as docs/conventions.md fixes it: a white
 // sheet of columns x rows spot spacings, the secondary target on its black square card at
 // the centre, and a grid of black spots spot_spacing_mm apart centred on the target,
 // without every grid spot that would touch the card. The same description is drawn by

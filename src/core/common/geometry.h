@@ -1,7 +1,7 @@
 #pragma once
 // The shared geometric vocabulary of ImagePro: camera model, target and pattern
 // geometry, pose, and the lens distortion model (thesis eq. 4.7).
-// Conventions (ARCHITECTURE.md, binding):
+// Conventions (docs/conventions.md, binding):
 //  * image (u, v) in pixels, u right, v down, centre of the top-left pixel at (0, 0);
 //  * camera frame X right, Y down, Z along the optical axis;
 //    u = u0 + d0*X/(sx*Z), v = v0 + d0*Y/(sy*Z);

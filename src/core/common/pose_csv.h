@@ -1,5 +1,5 @@
 #pragma once
-// The machine-readable pose output of ARCHITECTURE.md, one row per frame:
+// The machine-readable pose output of docs/conventions.md, one row per frame:
 //   frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm[,more columns]
 // `frame` is the file name for file input and the index otherwise; the pose
 // columns are empty unless the status is ok. Every writer of poses uses this.

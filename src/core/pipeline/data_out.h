@@ -1,6 +1,6 @@
 #pragma once
 // Data out (thesis appendix A, "dataout.txt"): one CSV row per frame in the format of
-// ARCHITECTURE.md, followed by the timestamp, the estimated (searched) and detected
+// docs/conventions.md, followed by the timestamp, the estimated (searched) and detected
 // regions and the per-stage times. Each row is flushed as it is written, so a killed
 // process loses at most the frame in flight; an existing file is never overwritten.
 #include <cstdio>

@@ -1,7 +1,7 @@
 #pragma once
 // Lens distortion correction (thesis 4.5): maps distorted pixel coordinates back to
 // undistorted (ideal pinhole) ones under the model of eq. 4.7, in pixels about the
-// principal point (ARCHITECTURE.md).
+// principal point (docs/conventions.md).
 //  * undistortTaylor: the thesis's first-order Taylor inverse, eqs. 4.18-4.19, with the
 //    partial derivatives of f_u, f_v (eqs. 4.15-4.16) written out analytically. One
 //    evaluation, no iteration; error grows with the distortion (thesis: <= 1 px for its

@@ -1,5 +1,5 @@
 #pragma once
-// The settings file (ARCHITECTURE.md): one JSON document with the camera, the
+// The settings file (docs/conventions.md): one JSON document with the camera, the
 // target, the calibration pattern, the virtual scene and every pipeline option.
 // Unknown keys and wrong types are errors naming the key; a missing key keeps its
 // default; saving is atomic, so a failed save never damages the old file.

@@ -9,7 +9,7 @@
 // Rendering is by inverse mapping, so the ground truth is exact: every image sample
 // (distorted pixel coordinates) is undistorted by inverting eq. 4.7 with Newton's
 // method, back-projected, and its ray intersected with the target plane (the pose
-// of ARCHITECTURE.md), where the point is classified. Binary mode samples pixel
+// of docs/conventions.md), where the point is classified. Binary mode samples pixel
 // centres. Grey mode averages supersampling^2 samples over the area of each pixel
 // that lies on an edge, then applies, in this order: illumination gradient (brightness
 // scaled by 1 + g * (u / (width - 1) - 0.5)), Gaussian blur, Gaussian noise.
@@ -35,7 +35,7 @@ void renderTarget(const CameraModel& camera, const TargetGeometry& target,
                   const VirtualSceneOptions& scene, const Pose& pose, cv::Mat& out,
                   std::uint64_t frame_seed = 0);
 
-// Renders the calibration pattern (thesis 4.3, ARCHITECTURE.md): a white sheet of
+// Renders the calibration pattern (thesis 4.3, docs/conventions.md): a white sheet of
 // columns x rows spacings, carrying the target on its black card of side
 // pattern.card_size_mm at the centre and a grid of black spots centred on the target,
 // without the grid spots that would touch the card. `pose` is the target's pose.

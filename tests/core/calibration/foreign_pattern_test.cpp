@@ -32,7 +32,7 @@ cv::Point fixedPoint(double x_px, double y_px) {
   return {static_cast<int>(std::lround(x_px * (1 << kShift))), static_cast<int>(std::lround(y_px * (1 << kShift)))};
 }
 
-// The description of ARCHITECTURE.md, read off the settings: a white sheet of columns x
+// The description of docs/conventions.md, read off the settings: a white sheet of columns x
 // rows spacings; the target (white disk of radius R, a black spot of radius r0 at its
 // centre and one rf to its +X) on a black square card; grid spots every spacing, centred
 // on the target, none that would touch the card. Sheet pixel (0, 0) is the sheet's corner
