@@ -5,8 +5,8 @@
 // ten poses among 6 to 42 white clutter bars and rectangles, noise, blur and uneven
 // lighting (the disk the brightest object), binarized by AT-Mod, Laplace edges and CN1
 // paths (outside the timing).
-//   taskset -c 1 build/tests/bench/bench_ellipse --benchmark_min_time=0.2 --benchmark_repetitions=5 \
-//       --benchmark_report_aggregates_only=true
+//   taskset -c 1 build/tests/bench/bench_ellipse --benchmark_min_time=0.2
+//       --benchmark_repetitions=5 --benchmark_report_aggregates_only=true   (one line)
 // The stage's counters: stage_fitted (paths the stage fitted, last frame),
 // stage_fitted_pixels, consensus_fits (0 on every table frame) and target_found.
 // Each method runs per frame (/frame:0 ... /frame:9) and over all ten in turn
