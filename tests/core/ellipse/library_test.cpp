@@ -188,6 +188,9 @@ TEST(LibraryClassification, BennettAtLeastAsGoodAsTheThesis) {
   const Tally t = classify(bennett(), nullptr);
   EXPECT_LE(t.ellipses_missed, 9);      // thesis: 9 of 72
   EXPECT_LE(t.rectangles_accepted, 7);  // thesis: 7 of 66
+  // The level docs/ellipse-detection.md reports: the 8 thin ellipses missed, no rectangle.
+  EXPECT_LE(t.ellipses_missed, 8) << numbers(t.missed);
+  EXPECT_EQ(t.rectangles_accepted, 0) << numbers(t.accepted);
 }
 
 // The grey versions of docs/ellipse-detection.md, at the levels reported there: at
