@@ -13,6 +13,7 @@
 #include <immintrin.h>
 #endif
 
+#include "core/common/simd_level.h"
 #include "core/ellipse/pixel_passes.h"
 
 namespace imagepro {
@@ -691,10 +692,7 @@ __attribute__((target("avx"))) std::size_t traceByFour(const TraceFrame& k, cons
   return i;
 }
 
-bool hasAvx() {
-  static const bool avx = __builtin_cpu_supports("avx");
-  return avx;
-}
+bool hasAvx() { return simdLevel() >= SimdLevel::Avx; }
 #endif
 
 template <class Points, class Get>

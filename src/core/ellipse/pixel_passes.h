@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <span>
 
+#include "core/common/simd_level.h"
 #include "core/edges/edge_list.h"
 
 #if defined(__SSE2__)
@@ -164,10 +165,7 @@ struct Ops {
 }  // namespace avx2
 #pragma GCC pop_options
 
-inline bool hasAvx2() {
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  return avx2;
-}
+inline bool hasAvx2() { return simdLevel() == SimdLevel::Avx2; }
 #endif
 
 }  // namespace detail
