@@ -15,7 +15,6 @@ namespace imagepro {
 namespace {
 
 constexpr std::int32_t kNoPixel = -1;
-constexpr std::int32_t kAssigned = -2;
 
 inline bool rasterBefore(const EdgePixel& a, const EdgePixel& b) {
   return a.y != b.y ? a.y < b.y : a.x < b.x;
@@ -162,8 +161,10 @@ Status connectCN1(const EdgeList& edges, cv::Size imageSize, Paths& out, Connect
   std::uint32_t* queue = ws.order.data();
   std::size_t tail = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    if (index[offsets[i]] == kAssigned) continue;
-    index[offsets[i]] = kAssigned;
+    if (index[offsets[i]] == kNoPixel) continue;  // already in a path
+    // A pixel put in a path goes back to -1 at once: not fresh to its neighbours, and
+    // the index image is all -1 again when the last path ends, with no clearing pass.
+    index[offsets[i]] = kNoPixel;
     pixels[tail] = edges[i];
     queue[tail++] = offsets[i];
     // The path grows at the list's end while `head` walks it.
@@ -176,12 +177,11 @@ Status connectCN1(const EdgeList& edges, cv::Size imageSize, Paths& out, Connect
         fresh &= fresh - 1;
         pixels[tail] = edges[static_cast<std::size_t>(index[at])];
         queue[tail++] = static_cast<std::uint32_t>(at);
-        index[at] = kAssigned;
+        index[at] = kNoPixel;
       }
     }
     out.starts.push_back(static_cast<std::uint32_t>(tail));
   }
-  clearIndex(ws);
   return Status::Ok;
 }
 
