@@ -159,31 +159,39 @@ int firstOf(const std::uint8_t* row, int x, int x1, std::uint8_t level, int lowe
   return x;
 }
 
-// Sums of g and of i g over the n pixels g = p[i] (n <= 2^15, so the sums fit in 32 bits):
-// with SSE2 sixteen pixels per step, g summed by _mm_sad_epu8 and i g by _mm_madd_epi16.
-void rowMoments(const std::uint8_t* p, int n, int& sumG, int& sumIG) {
-  int i = 0, g = 0, ig = 0;
+// Sums of g and of i g over the n pixels g = p[i]. With SSE2 sixteen pixels per step, g
+// summed by _mm_sad_epu8 and i g by _mm_madd_epi16, in blocks of kMomentBlock pixels: i
+// then fits an int16 lane and a block's i g (below 255 * 2048^2 / 2) an int32.
+void rowMoments(const std::uint8_t* p, int n, std::int64_t& sumG, std::int64_t& sumIG) {
+  constexpr int kMomentBlock = 2048;
+  std::int64_t g = 0, ig = 0;
+  int i = 0;
 #if defined(__SSE2__)
   const __m128i zero = _mm_setzero_si128(), eight = _mm_set1_epi16(8), sixteen = _mm_set1_epi16(16);
-  __m128i index = _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7);
-  __m128i sums = zero, moments = zero;
-  for (; i + 16 <= n; i += 16) {
-    const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + i));
-    sums = _mm_add_epi64(sums, _mm_sad_epu8(v, zero));
-    moments = _mm_add_epi32(moments, _mm_madd_epi16(_mm_unpacklo_epi8(v, zero), index));
-    moments = _mm_add_epi32(moments, _mm_madd_epi16(_mm_unpackhi_epi8(v, zero), _mm_add_epi16(index, eight)));
-    index = _mm_add_epi16(index, sixteen);
+  for (int start = 0; start + 16 <= n; start += kMomentBlock) {
+    const int end = std::min(n, start + kMomentBlock);
+    __m128i index = _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7);  // i - start
+    __m128i sums = zero, moments = zero;
+    for (i = start; i + 16 <= end; i += 16) {
+      const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + i));
+      sums = _mm_add_epi64(sums, _mm_sad_epu8(v, zero));
+      moments = _mm_add_epi32(moments, _mm_madd_epi16(_mm_unpacklo_epi8(v, zero), index));
+      moments = _mm_add_epi32(moments, _mm_madd_epi16(_mm_unpackhi_epi8(v, zero), _mm_add_epi16(index, eight)));
+      index = _mm_add_epi16(index, sixteen);
+    }
+    std::array<std::int64_t, 2> s{};
+    std::array<std::int32_t, 4> m{};
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(s.data()), sums);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(m.data()), moments);
+    const std::int64_t block_g = s[0] + s[1];
+    g += block_g;
+    ig += static_cast<std::int64_t>(m[0]) + m[1] + m[2] + m[3] + static_cast<std::int64_t>(start) * block_g;
+    if (i < end) break;  // a tail of fewer than 16 pixels: taken one by one below
   }
-  std::array<std::int64_t, 2> s{};
-  std::array<std::int32_t, 4> m{};
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(s.data()), sums);
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(m.data()), moments);
-  g = static_cast<int>(s[0] + s[1]);
-  ig = m[0] + m[1] + m[2] + m[3];
 #endif
   for (; i < n; ++i) {
     g += p[i];
-    ig += i * p[i];
+    ig += static_cast<std::int64_t>(i) * p[i];
   }
   sumG = g;
   sumIG = ig;
@@ -742,12 +750,13 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
     std::int64_t n = 0, sumX = 0, sumY = 0, sumG = 0, sumXG = 0, sumYG = 0;
     for (int y = box.y; y < box.y + box.height; ++y) {
       const std::uint8_t* row = grey.ptr<std::uint8_t>(y);
-      int rowN = 0, rowX = 0, rowG = 0, rowXG = 0;
+      std::int64_t rowN = 0, rowX = 0, rowG = 0, rowXG = 0;
       if (boxInside) {
-        int rowIG = 0;
+        std::int64_t rowIG = 0;
         rowMoments(row + box.x, box.width, rowG, rowIG);
         rowN = box.width;
-        rowX = box.width * box.x + box.width * (box.width - 1) / 2;
+        const std::int64_t width = box.width;
+        rowX = width * box.x + width * (width - 1) / 2;
         rowXG = box.x * rowG + rowIG;
       } else {
         for (int x = box.x; x < box.x + box.width; ++x) {
@@ -755,12 +764,12 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
           ++rowN;
           rowX += x;
           rowG += row[x];
-          rowXG += x * row[x];
+          rowXG += static_cast<std::int64_t>(x) * row[x];
         }
       }
       n += rowN;
       sumX += rowX;
-      sumY += static_cast<std::int64_t>(rowN) * y;
+      sumY += rowN * y;
       sumG += rowG;
       sumXG += rowXG;
       sumYG += static_cast<std::int64_t>(rowG) * y;
