@@ -11,59 +11,58 @@ namespace imagepro::cli {
 
 namespace {
 
-// Ends an endless source after a number of frames.
-class FrameLimit final : public FrameSource {
+// A source around another: everything but next() is the inner source's.
+class WrappedSource : public FrameSource {
  public:
-  FrameLimit(std::unique_ptr<FrameSource> inner, std::int64_t frames) : inner_(std::move(inner)), left_(frames) {}
+  explicit WrappedSource(std::unique_ptr<FrameSource> inner) : inner_(std::move(inner)) {}
+  std::string lastError() const override { return inner_->lastError(); }
+  double frameRateHz() const override { return inner_->frameRateHz(); }
+  std::string describe() const override { return inner_->describe(); }
+
+ protected:
+  std::unique_ptr<FrameSource> inner_;
+};
+
+// Ends an endless source after a number of frames.
+class FrameLimit final : public WrappedSource {
+ public:
+  FrameLimit(std::unique_ptr<FrameSource> inner, std::int64_t frames)
+      : WrappedSource(std::move(inner)), left_(frames) {}
   Status next(Frame& out) override {
     if (left_ <= 0) return Status::EndOfStream;
     --left_;
     return inner_->next(out);
   }
-  std::string lastError() const override { return inner_->lastError(); }
-  double frameRateHz() const override { return inner_->frameRateHz(); }
-  std::string describe() const override { return inner_->describe(); }
 
  private:
-  std::unique_ptr<FrameSource> inner_;
   std::int64_t left_;
 };
 
 // Ends a camera stream after a failure that needs a restart: the loop gets the
 // failure once (so it is reported), then EndOfStream.
-class EndAfterCameraFailure final : public FrameSource {
+class EndAfterCameraFailure final : public WrappedSource {
  public:
-  explicit EndAfterCameraFailure(std::unique_ptr<FrameSource> inner) : inner_(std::move(inner)) {}
+  using WrappedSource::WrappedSource;
   Status next(Frame& out) override {
     if (failed_) return Status::EndOfStream;
     const Status s = inner_->next(out);
     failed_ = isCameraFailure(s);
     return s;
   }
-  std::string lastError() const override { return inner_->lastError(); }
-  double frameRateHz() const override { return inner_->frameRateHz(); }
-  std::string describe() const override { return inner_->describe(); }
 
  private:
-  std::unique_ptr<FrameSource> inner_;
   bool failed_ = false;
 };
 
 // Image files decoded without the decoders' own stderr lines: the frame's row and
 // lastError() name the problem once.
-class QuietDecoding final : public FrameSource {
+class QuietDecoding final : public WrappedSource {
  public:
-  explicit QuietDecoding(std::unique_ptr<FrameSource> inner) : inner_(std::move(inner)) {}
+  using WrappedSource::WrappedSource;
   Status next(Frame& out) override {
     const DecoderMessagesSilenced quiet;
     return inner_->next(out);
   }
-  std::string lastError() const override { return inner_->lastError(); }
-  double frameRateHz() const override { return inner_->frameRateHz(); }
-  std::string describe() const override { return inner_->describe(); }
-
- private:
-  std::unique_ptr<FrameSource> inner_;
 };
 
 // "640x480" -> width and height.
