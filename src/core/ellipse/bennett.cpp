@@ -5,6 +5,12 @@
 #include <limits>
 #include <random>
 
+#include "core/common/simd_level.h"
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 namespace imagepro {
 
 namespace {
@@ -69,33 +75,93 @@ inline bool clipRay(const Box& box, double mx, double my, double ux, double uy, 
   while (first <= last && !inside(first)) ++first;
   while (last >= first && !inside(last)) --last;
   if (first > last) return false;
-  ray = Ray{x + first * sx, y + first * sy, sx, sy, last - first + 1};
+  // Inside the box the coordinates and steps fit in int32 (|step| <= one cell).
+  ray = Ray{static_cast<std::int32_t>(x + first * sx), static_cast<std::int32_t>(y + first * sy),
+            static_cast<std::int32_t>(sx), static_cast<std::int32_t>(sy), last - first + 1};
   return true;
 }
 
-// Adds a vote to every cell of each ray.
-void voteRays(std::uint32_t* acc, const Box& box, std::span<const Ray> rays) {
-  constexpr std::int64_t kCell = 65536;
-  const std::ptrdiff_t stride = box.w;
-  for (const Ray& r : rays) {
-    if (r.sx == kCell || r.sx == -kCell) {
-      // One column per step: the column moves by one, the row follows y.
-      std::ptrdiff_t column = static_cast<std::ptrdiff_t>(r.x >> 16);
-      const std::ptrdiff_t dir = r.sx > 0 ? 1 : -1;
-      std::int64_t y = r.y;
-      for (int i = 0; i < r.count; ++i, column += dir, y += r.sy) ++acc[(y >> 16) * stride + column];
-    } else if (r.sy == kCell || r.sy == -kCell) {
-      // One row per step.
-      std::ptrdiff_t row = static_cast<std::ptrdiff_t>(r.y >> 16) * stride;
-      const std::ptrdiff_t dir = r.sy > 0 ? stride : -stride;
-      std::int64_t x = r.x;
-      for (int i = 0; i < r.count; ++i, row += dir, x += r.sx) ++acc[row + (x >> 16)];
-    } else {
-      std::int64_t x = r.x, y = r.y;
-      for (int i = 0; i < r.count; ++i, x += r.sx, y += r.sy) ++acc[(y >> 16) * stride + (x >> 16)];
-    }
+#if defined(__SSE2__)
+namespace sse2 {
+struct Ops {
+  using V = __m128i;
+  static constexpr int kLanes = 4;
+  static V set1(std::int32_t v) { return _mm_set1_epi32(v); }
+  static V ramp(std::int32_t base, std::int32_t step) {  // base + k step in lane k
+    return _mm_setr_epi32(base, base + step, base + 2 * step, base + 3 * step);
   }
+  static V add(V a, V b) { return _mm_add_epi32(a, b); }
+  static V bitOr(V a, V b) { return _mm_or_si128(a, b); }
+  static V bitAnd(V a, V b) { return _mm_and_si128(a, b); }
+  static V shiftRight16(V a) { return _mm_srli_epi32(a, 16); }
+  static V maddInt16(V a, V b) { return _mm_madd_epi16(a, b); }
+  static V greater(V a, V b) { return _mm_cmpgt_epi32(a, b); }
+  static V select(V mask, V a, V b) { return _mm_or_si128(_mm_and_si128(mask, a), _mm_andnot_si128(mask, b)); }
+  static V max(V a, V b) { return select(greater(a, b), a, b); }  // signed: counts stay below 2^31
+  static int equalMask(V a, V b) { return _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(a, b))); }
+  template <class T>
+  static V load(const T* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); }
+  template <class T>
+  static void store(T* p, V v) { _mm_storeu_si128(reinterpret_cast<__m128i*>(p), v); }
+};
+#include "core/ellipse/bennett_rays.h"
+}  // namespace sse2
+
+// The same text compiled for AVX2 (called only where the processor has it).
+#pragma GCC push_options
+#pragma GCC target("avx2")
+namespace avx2 {
+struct Ops {
+  using V = __m256i;
+  static constexpr int kLanes = 8;
+  static V set1(std::int32_t v) { return _mm256_set1_epi32(v); }
+  static V ramp(std::int32_t base, std::int32_t step) {
+    return _mm256_add_epi32(_mm256_set1_epi32(base),
+                            _mm256_mullo_epi32(_mm256_set1_epi32(step), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+  }
+  static V add(V a, V b) { return _mm256_add_epi32(a, b); }
+  static V bitOr(V a, V b) { return _mm256_or_si256(a, b); }
+  static V bitAnd(V a, V b) { return _mm256_and_si256(a, b); }
+  static V shiftRight16(V a) { return _mm256_srli_epi32(a, 16); }
+  static V maddInt16(V a, V b) { return _mm256_madd_epi16(a, b); }
+  static V greater(V a, V b) { return _mm256_cmpgt_epi32(a, b); }
+  static V select(V mask, V a, V b) { return _mm256_blendv_epi8(b, a, mask); }
+  static V max(V a, V b) { return _mm256_max_epi32(a, b); }  // signed, as with SSE2
+  static int equalMask(V a, V b) { return _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(a, b))); }
+  template <class T>
+  static V load(const T* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
+  template <class T>
+  static void store(T* p, V v) { _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), v); }
+};
+#include "core/ellipse/bennett_rays.h"
+}  // namespace avx2
+#pragma GCC pop_options
+
+inline bool hasAvx2() { return simdLevel() == SimdLevel::Avx2; }
+
+void voteRays(std::uint32_t* acc, const Box& box, std::span<const Ray> rays, std::int32_t* cells) {
+  if (hasAvx2())
+    avx2::voteRays(acc, box.w, rays, cells);
+  else
+    sse2::voteRays(acc, box.w, rays, cells);
 }
+std::uint32_t maxCount(const std::uint32_t* acc, std::size_t n) {
+  return hasAvx2() ? avx2::maxCount(acc, n) : sse2::maxCount(acc, n);
+}
+std::size_t firstIndexOf(const std::uint32_t* acc, std::size_t n, std::uint32_t value) {
+  return hasAvx2() ? avx2::firstIndexOf(acc, n, value) : sse2::firstIndexOf(acc, n, value);
+}
+#else
+void voteRays(std::uint32_t* acc, const Box& box, std::span<const Ray> rays, std::int32_t*) {
+  for (const Ray& r : rays)
+    for (std::int32_t k = 0, x = r.x, y = r.y; k < r.count; ++k, x += r.sx, y += r.sy)
+      ++acc[(y >> 16) * box.w + (x >> 16)];
+}
+std::uint32_t maxCount(const std::uint32_t* acc, std::size_t n) { return *std::max_element(acc, acc + n); }
+std::size_t firstIndexOf(const std::uint32_t* acc, std::size_t n, std::uint32_t value) {
+  return static_cast<std::size_t>(std::find(acc, acc + n, value) - acc);
+}
+#endif
 
 // Samples `keep` of the `usable` pixels (those with a gradient) and accumulates every
 // pair's ray into ws.accumulator over `box`; returns the pairs that voted. The sample is
@@ -133,6 +199,7 @@ std::size_t accumulatePairs(std::span<const EdgePixel> path, std::size_t usable,
   // chain of divisions for one pair then overlaps the next pair's instead of waiting
   // for a counting loop.
   ws.rays.resize(m);
+  ws.cells.resize(static_cast<std::size_t>(std::max(box.w, box.h)) + 8);  // a ray's cells, whole vectors
   std::size_t pairs = 0;
   for (std::size_t i = 0; i < m; ++i) {
     std::size_t rays = 0;
@@ -165,16 +232,12 @@ std::size_t accumulatePairs(std::span<const EdgePixel> path, std::size_t usable,
       const double inv = 1.0 / std::sqrt(len2);
       rays += clipRay(box, mx, my, ux * inv, uy * inv, ws.rays[rays]);
     }
-    voteRays(acc, box, std::span<const Ray>(ws.rays.data(), rays));
+    voteRays(acc, box, std::span<const Ray>(ws.rays.data(), rays), ws.cells.data());
   }
   return pairs;
 }
 
-double maxVotes(const BennettWorkspace& ws) {
-  std::uint32_t best = 0;
-  for (const std::uint32_t v : ws.accumulator) best = std::max(best, v);
-  return best;
-}
+double maxVotes(const BennettWorkspace& ws) { return maxCount(ws.accumulator.data(), ws.accumulator.size()); }
 
 }  // namespace
 
@@ -215,9 +278,7 @@ Status bennettAccumulate(std::span<const EdgePixel> path, int max_points, Bennet
   const double weight = all_pairs / pairsOf(ws.sample.size());
 
   // Absolute peak.
-  std::size_t best = 0;
-  for (std::size_t k = 1; k < ws.accumulator.size(); ++k)
-    if (acc[k] > acc[best]) best = k;
+  const std::size_t best = firstIndexOf(acc, ws.accumulator.size(), maxCount(acc, ws.accumulator.size()));
   const int px = static_cast<int>(best % box.w), py = static_cast<int>(best / box.w);
   const double peak = acc[best];  // votes; the score is in all-pairs units
   if (!(peak > 0.0)) return Status::NoTarget;
@@ -234,9 +295,6 @@ Status bennettAccumulate(std::span<const EdgePixel> path, int max_points, Bennet
     twice_cy = box.h - 1;
   }
   const int best_sx = twice_cx - 2 * px, best_sy = twice_cy - 2 * py;
-  auto at = [&](int x, int y) -> double {
-    return box.contains(x, y) ? acc[static_cast<std::size_t>(y) * box.w + x] : 0.0;
-  };
   out.cx = box.x0 + 0.5 * twice_cx;
   out.cy = box.y0 + 0.5 * twice_cy;
 
@@ -246,32 +304,58 @@ Status bennettAccumulate(std::span<const EdgePixel> path, int max_points, Bennet
   // symmetric to the end; a peak off the box's centre loses its symmetry at the nearest
   // border, where the mirrored cells leave the box (thesis rule 1).
   // Per ring r: [0] sum of scores, [1] cells, [2] sum |A(q) - A(q')|, [3] sum A(q) + A(q').
+  // The sums are of integer counts, exact in any order.
   const int reach = std::max({px, py, box.w - 1 - px, box.h - 1 - py});
   const std::size_t rings = static_cast<std::size_t>(reach) + 1;
   out.border_distance_px = reach;
-  ws.rings.assign(4 * rings, 0.0);
-  double* ring_sum = ws.rings.data();
-  double* ring_count = ring_sum + rings;
-  double* ring_diff = ring_count + rings;
-  double* ring_both = ring_diff + rings;
-  for (int dy = -reach; dy <= reach; ++dy) {
-    for (int dx = -reach; dx <= reach; ++dx) {
-      const int r = static_cast<int>(std::lround(std::sqrt(static_cast<double>(dx * dx + dy * dy))));
-      if (r > reach) continue;
-      const double u = at(px + dx, py + dy), v = at(px + best_sx - dx, py + best_sy - dy);
+  ws.rings.assign(4 * rings, 0);
+  std::int64_t* ring_sum = ws.rings.data();
+  std::int64_t* ring_count = ring_sum + rings;
+  std::int64_t* ring_diff = ring_count + rings;
+  std::int64_t* ring_both = ring_diff + rings;
+  // Only cells where A(q) or its mirror A(q') lies in the box add anything (the cells
+  // counted for the mean, within `border` of the peak, lie in it): the rows and columns
+  // of offsets d where either does. The mirror's offset differs by at most 2 kSnap, so
+  // each range is one interval, and it contains 0.
+  const int dx_lo = std::max(-reach, std::min(-px, px + best_sx - (box.w - 1)));
+  const int dx_hi = std::min(reach, std::max(box.w - 1 - px, px + best_sx));
+  const int dy_lo = std::max(-reach, std::min(-py, py + best_sy - (box.h - 1)));
+  const int dy_hi = std::min(reach, std::max(box.h - 1 - py, py + best_sy));
+  for (int dy = dy_lo; dy <= dy_hi; ++dy) {
+    const int uy = py + dy, vy = py + best_sy - dy;
+    const std::uint32_t* u_row = uy >= 0 && uy < box.h ? acc + static_cast<std::ptrdiff_t>(uy) * box.w : nullptr;
+    const std::uint32_t* v_row = vy >= 0 && vy < box.h ? acc + static_cast<std::ptrdiff_t>(vy) * box.w : nullptr;
+    auto addCell = [&](int dx, int r) {
+      const int ux = px + dx, vx = px + best_sx - dx;
+      const std::int64_t u = u_row && ux >= 0 && ux < box.w ? u_row[ux] : 0;
+      const std::int64_t v = v_row && vx >= 0 && vx < box.w ? v_row[vx] : 0;
       if (r <= border) {
         ring_sum[r] += u;
-        ring_count[r] += 1.0;
+        ++ring_count[r];
       }
-      ring_diff[r] += std::abs(u - v);
+      ring_diff[r] += u > v ? u - v : v - u;
       ring_both[r] += u + v;
+    };
+    // The ring of offset d is lround(|d|): the r with r^2 - r < |d|^2 <= r^2 + r (no
+    // integer |d|^2 lies on a half-integer radius), found by stepping r outwards along
+    // each half row from |dy|.
+    const std::int64_t dy2 = static_cast<std::int64_t>(dy) * dy;
+    for (int side = 1; side >= -1; side -= 2) {
+      const int end = side > 0 ? dx_hi : -dx_lo;
+      std::int64_t r = std::abs(dy);
+      for (int t = side > 0 ? 0 : 1; t <= end; ++t) {
+        const std::int64_t d2 = dy2 + static_cast<std::int64_t>(t) * t;
+        while (d2 > r * r + r) ++r;
+        if (r > reach) break;
+        addCell(side * t, static_cast<int>(r));
+      }
     }
   }
   const double half = 0.5 * peak;
   out.half_radius_px = border;  // when the mean never falls to half inside the box
   double prev = peak;
   for (int r = 1; r <= border; ++r) {
-    const double mean = ring_sum[r] / ring_count[r];
+    const double mean = static_cast<double>(ring_sum[r]) / static_cast<double>(ring_count[r]);
     if (mean <= half) {
       out.half_radius_px = (r - 1) + (prev - half) / (prev - mean);
       break;
@@ -281,7 +365,7 @@ Status bennettAccumulate(std::span<const EdgePixel> path, int max_points, Bennet
   out.quality = out.score / std::sqrt(std::max(out.half_radius_px, 0.25));
   out.symmetry_px = reach + 1;  // symmetric out to the farthest border
   for (int r = 1; r <= reach; ++r) {
-    if (ring_both[r] > 0.0 && ring_diff[r] / ring_both[r] > kAsymmetryLimit) {
+    if (ring_both[r] > 0 && static_cast<double>(ring_diff[r]) / static_cast<double>(ring_both[r]) > kAsymmetryLimit) {
       out.symmetry_px = r;
       break;
     }

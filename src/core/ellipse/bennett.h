@@ -55,14 +55,15 @@ struct BennettWorkspace {
     double x, y, gx, gy, c;  // a sampled pixel in box coordinates; its tangent line g . X = c
   };
   struct Ray {
-    std::int64_t x, y, sx, sy;  // first cell and step, 16.16 fixed point
-    int count;                  // cells
+    std::int32_t x, y, sx, sy;  // first cell and step, 16.16 fixed point
+    std::int32_t count;         // cells
   };
   std::vector<std::uint32_t> accumulator;  // votes per cell
   std::vector<Point> points;               // the sampled pixels
   std::vector<Ray> rays;                   // the clipped rays of one pixel's pairs
+  std::vector<std::int32_t> cells;         // the accumulator indices of one ray's cells
   std::vector<std::uint32_t> sample;  // indices of the sampled path pixels
-  std::vector<double> rings;           // per-ring sums about the peak
+  std::vector<std::int64_t> rings;     // per-ring sums about the peak
 };
 
 // TooFewPoints for fewer than 6 pixels with a gradient, NoTarget when no pair votes.
