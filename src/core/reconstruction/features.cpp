@@ -8,8 +8,10 @@
 #include <cstring>
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
+#include <immintrin.h>
 #endif
+
+#include "core/common/simd_level.h"
 
 #include "core/segmentation/image_buffer.h"
 #include "core/segmentation/threshold.h"
@@ -24,7 +26,6 @@ constexpr double kSpotRimClearancePx = 2.5;  // spot centroids ignore pixels thi
 constexpr double kRaySteps = 16.0;  // 8 points MOD: samples per pixel along a ray
 constexpr double kMinSubPixelContrastFraction = 0.3;
 constexpr double kSubPixelPoints = 160.0;
-constexpr int kHistogramPixels = 8192;  // the crop's histogram samples at least this many
 
 // The detected ellipse as a quadratic form: rho^2 = P dx^2 + 2 Q dx dy + R dy^2 with
 // (dx, dy) from its centre; rho = 1 on the ellipse.
@@ -116,47 +117,68 @@ void binarizeCrop(const cv::Mat& grey, const cv::Rect& crop, int t, cv::Mat& out
   }
 }
 
-// The first x in [x, x1] with row[x] <= level (Dark) or row[x] > level (!Dark), x1 + 1 if
-// none: whole blocks of 16 pixels are passed over when none of them qualifies (one SSE2
-// comparison and mask per block: g <= level exactly when min(g, level) == g).
-// The pixels from `lowest` on may be read: the last, partial block is then read as the
-// whole block ending at x1, its pixels before x masked off.
-template <bool Dark>
-int firstOf(const std::uint8_t* row, int x, int x1, std::uint8_t level, int lowest) {
-  constexpr int kBlock = 16;
+// The spot search's row scan (dark_runs_pass.h), once per vector width: the widest the
+// processor has is taken at run time (core/common/simd_level.h); every width finds the
+// same runs.
 #if defined(__SSE2__)
-  const __m128i levels = _mm_set1_epi8(static_cast<char>(level));
-  auto flags = [&](int at) {
-    const __m128i g = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + at));
-    const int mask = _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_min_epu8(g, levels), g));
-    return static_cast<unsigned>(Dark ? mask : mask ^ 0xFFFF);
-  };
-  for (; x + kBlock <= x1 + 1; x += kBlock)
-    if (const unsigned mask = flags(x); mask != 0) return x + std::countr_zero(mask);
-  if (x <= x1 && x1 + 1 - kBlock >= lowest) {
-    const int at = x1 + 1 - kBlock;
-    const unsigned mask = flags(at) & (0xFFFFu << (x - at));
-    return mask != 0 ? at + std::countr_zero(mask) : x1 + 1;
+namespace sse2 {
+struct Ops {
+  static constexpr int kBlock = 16;
+  using Level = __m128i;
+  static Level level(std::uint8_t cut) { return _mm_set1_epi8(static_cast<char>(cut)); }
+  static std::uint8_t value(const Level& l) { return static_cast<std::uint8_t>(_mm_cvtsi128_si32(l)); }
+  // g <= level exactly when min(g, level) == g.
+  static unsigned darkMask(const std::uint8_t* p, const Level& l) {
+    const __m128i g = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+    return static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_min_epu8(g, l), g)));
   }
+};
+#include "core/reconstruction/dark_runs_pass.h"
+}  // namespace sse2
+
+#pragma GCC push_options
+#pragma GCC target("avx2")
+namespace avx2 {
+struct Ops {
+  static constexpr int kBlock = 32;
+  using Level = __m256i;
+  static Level level(std::uint8_t cut) { return _mm256_set1_epi8(static_cast<char>(cut)); }
+  static std::uint8_t value(const Level& l) {
+    return static_cast<std::uint8_t>(_mm_cvtsi128_si32(_mm256_castsi256_si128(l)));
+  }
+  static unsigned darkMask(const std::uint8_t* p, const Level& l) {
+    const __m256i g = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+    return static_cast<unsigned>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_min_epu8(g, l), g)));
+  }
+};
+#include "core/reconstruction/dark_runs_pass.h"
+}  // namespace avx2
+#pragma GCC pop_options
 #else
-  static_cast<void>(lowest);
-  std::array<std::uint8_t, kBlock> block{}, flag{};
-  for (; x + kBlock <= x1 + 1; x += kBlock) {
-    // A per-pixel flag, then two words tested at once; the first flagged byte is the
-    // answer (byte k of a little-endian word is pixel k).
-    std::memcpy(block.data(), row + x, kBlock);
-    for (int i = 0; i < kBlock; ++i) flag[i] = (block[i] <= level) == Dark ? 0xFF : 0;
-    std::uint64_t lo = 0, hi = 0;
-    std::memcpy(&lo, flag.data(), 8);
-    std::memcpy(&hi, flag.data() + 8, 8);
-    if ((lo | hi) == 0) continue;
-    if constexpr (std::endian::native == std::endian::little)
-      return x + (lo != 0 ? std::countr_zero(lo) : 64 + std::countr_zero(hi)) / 8;
-    break;
+namespace scalar {
+struct Ops {
+  static constexpr int kBlock = 16;
+  using Level = std::uint8_t;
+  static Level level(std::uint8_t cut) { return cut; }
+  static std::uint8_t value(Level l) { return l; }
+  static unsigned darkMask(const std::uint8_t* p, Level l) {
+    unsigned mask = 0;
+    for (int i = 0; i < kBlock; ++i) mask |= (p[i] <= l ? 1u : 0u) << i;
+    return mask;
   }
+};
+#include "core/reconstruction/dark_runs_pass.h"
+}  // namespace scalar
 #endif
-  while (x <= x1 && (row[x] <= level) != Dark) ++x;
-  return x;
+
+using DarkRunsFn = int (*)(const std::uint8_t*, int, int, std::uint8_t, int, int*);
+
+DarkRunsFn darkRunsForThisProcessor() {
+#if defined(__SSE2__)
+  return simdLevel() == SimdLevel::Avx2 ? &avx2::darkRuns : &sse2::darkRuns;
+#else
+  return &scalar::darkRuns;
+#endif
 }
 
 // Sums of g and of i g over the n pixels g = p[i]. With SSE2 sixteen pixels per step, g
@@ -186,7 +208,27 @@ void rowMoments(const std::uint8_t* p, int n, std::int64_t& sumG, std::int64_t& 
     const std::int64_t block_g = s[0] + s[1];
     g += block_g;
     ig += static_cast<std::int64_t>(m[0]) + m[1] + m[2] + m[3] + static_cast<std::int64_t>(start) * block_g;
-    if (i < end) break;  // a tail of fewer than 16 pixels: taken one by one below
+    if (i < end) break;  // a tail of fewer than 16 pixels: taken below
+  }
+  if (i < n && n >= 16) {
+    // The tail as the last 16 pixels of the row, those before i masked off: lane l is
+    // pixel at + l, so i g = l g + at g.
+    const int at = n - 16;
+    const __m128i lanes = _mm_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m128i keep = _mm_cmpgt_epi8(lanes, _mm_set1_epi8(static_cast<char>(i - at - 1)));
+    const __m128i v = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + at)), keep);
+    const __m128i sums = _mm_sad_epu8(v, zero);
+    const __m128i moments =
+        _mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi8(v, zero), _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7)),
+                      _mm_madd_epi16(_mm_unpackhi_epi8(v, zero), _mm_setr_epi16(8, 9, 10, 11, 12, 13, 14, 15)));
+    std::array<std::int64_t, 2> s{};
+    std::array<std::int32_t, 4> m{};
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(s.data()), sums);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(m.data()), moments);
+    const std::int64_t tail_g = s[0] + s[1];
+    g += tail_g;
+    ig += static_cast<std::int64_t>(m[0]) + m[1] + m[2] + m[3] + static_cast<std::int64_t>(at) * tail_g;
+    i = n;
   }
 #endif
   for (; i < n; ++i) {
@@ -542,18 +584,19 @@ void fullPathMod(const ThresholdLines& lines, const cv::Rect& crop, const cv::Ma
 
 // Mean grey level of the classes [0, t] and [t+1, 255] of a histogram.
 void classMeans(const Histogram& h, int t, double& dark, double& bright) {
-  double n0 = 0, s0 = 0, n1 = 0, s1 = 0;
-  for (int g = 0; g < 256; ++g) {
-    if (g <= t) {
-      n0 += h[g];
-      s0 += static_cast<double>(g) * h[g];
-    } else {
-      n1 += h[g];
-      s1 += static_cast<double>(g) * h[g];
-    }
+  // Integer sums (exact, as the double sums of integers below 2^53 were), then one division.
+  std::uint64_t n0 = 0, s0 = 0, n1 = 0, s1 = 0;
+  const int split = std::clamp(t + 1, 0, 256);
+  for (int g = 0; g < split; ++g) {
+    n0 += h[g];
+    s0 += static_cast<std::uint64_t>(g) * h[g];
   }
-  dark = n0 > 0 ? s0 / n0 : 0.0;
-  bright = n1 > 0 ? s1 / n1 : 255.0;
+  for (int g = split; g < 256; ++g) {
+    n1 += h[g];
+    s1 += static_cast<std::uint64_t>(g) * h[g];
+  }
+  dark = n0 > 0 ? static_cast<double>(s0) / static_cast<double>(n0) : 0.0;
+  bright = n1 > 0 ? static_cast<double>(s1) / static_cast<double>(n1) : 255.0;
 }
 
 int findRoot(std::vector<SpotRun>& runs, int i) {
@@ -594,8 +637,8 @@ Status rethresholdCrop(const cv::Mat& grey, const cv::Rect& crop, const Threshol
     return Status::OutOfImage;
   // A near target's crop is large; its grey-level distribution, all the threshold and the
   // class means depend on, is the same on a regular subset of its rows: every k-th row,
-  // at least kHistogramPixels pixels in all. (A view with a k times larger row step.)
-  const int rowStep = sampleRows ? std::max(1, crop.area() / kHistogramPixels) : 1;
+  // at least kCropHistogramPixels pixels in all. (A view with a k times larger row step.)
+  const int rowStep = sampleRows ? std::max(1, crop.area() / kCropHistogramPixels) : 1;
   const cv::Mat region = grey(crop);
   const cv::Mat sampled((crop.height + rowStep - 1) / rowStep, crop.width, CV_8UC1, region.data,
                         region.step[0] * static_cast<std::size_t>(rowStep));
@@ -651,6 +694,9 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
   const auto spotLevel = static_cast<std::uint8_t>(std::clamp(floorToInt(0.5 * (ws.dark_mean + ws.bright_mean)), 0, 255));
   std::vector<SpotRun>& runs = ws.runs;
   runs.clear();
+  std::vector<int>& bounds = ws.runBounds;
+  bounds.resize(static_cast<std::size_t>(crop.width) + 2);  // a row's runs at most
+  const DarkRunsFn darkRuns = darkRunsForThisProcessor();
   // Black runs inside the search ellipse, row by row; each run is joined to the
   // 8-connected runs of the row above.
   std::size_t prevBegin = 0, prevEnd = 0;
@@ -662,11 +708,9 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
       const int x0 = std::max(ceilToInt(xl), crop.x) - crop.x;
       const int x1 = std::min(floorToInt(xr), crop.x + crop.width - 1) - crop.x;
       const std::uint8_t* row = grey.ptr<std::uint8_t>(y) + crop.x;
-      for (int x = x0; x <= x1;) {
-        x = firstOf<true>(row, x, x1, spotLevel, -crop.x);
-        if (x > x1) break;
-        const int start = x;
-        x = firstOf<false>(row, x, x1, spotLevel, -crop.x);
+      const int count = x0 <= x1 ? darkRuns(row, x0, x1, spotLevel, -crop.x, bounds.data()) : 0;
+      for (int i = 0; i < count; ++i) {
+        const int start = bounds[2 * i], x = bounds[2 * i + 1] + 1;
         const int id = static_cast<int>(runs.size());
         runs.push_back({r, start, x - 1, id});
         for (std::size_t p = prevBegin; p < prevEnd; ++p) {
@@ -728,6 +772,10 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
                                   cmp.x1 - cmp.x0 + 1 + 2 * kSpotBoxGrowPx,
                                   cmp.y1 - cmp.y0 + 1 + 2 * kSpotBoxGrowPx) &
                          cv::Rect(0, 0, grey.cols, grey.rows);
+    // The ellipse is convex: with the box's corners inside, every pixel is.
+    const int bx1 = box.x + box.width - 1, by1 = box.y + box.height - 1;
+    const bool boxInside = rim.rho2(box.x, box.y) < rho2Max && rim.rho2(bx1, box.y) < rho2Max &&
+                           rim.rho2(box.x, by1) < rho2Max && rim.rho2(bx1, by1) < rho2Max;
     // The local white level: the box's border pixels inside the rim.
     double borderSum = 0.0;
     int borderCount = 0;
@@ -735,16 +783,12 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
       const std::uint8_t* row = grey.ptr<std::uint8_t>(y);
       const bool edgeRow = y == box.y || y == box.y + box.height - 1;
       for (int x = box.x; x < box.x + box.width; x += edgeRow ? 1 : std::max(box.width - 1, 1)) {
-        if (rim.rho2(x, y) >= rho2Max) continue;
+        if (!boxInside && rim.rho2(x, y) >= rho2Max) continue;
         borderSum += row[x];
         ++borderCount;
       }
     }
     const double white = borderCount > 0 ? borderSum / borderCount : bright;
-    // The ellipse is convex: with the box's corners inside, every pixel is.
-    const int bx1 = box.x + box.width - 1, by1 = box.y + box.height - 1;
-    const bool boxInside = rim.rho2(box.x, box.y) < rho2Max && rim.rho2(bx1, box.y) < rho2Max &&
-                           rim.rho2(box.x, by1) < rho2Max && rim.rho2(bx1, by1) < rho2Max;
     // Weights white - g: summed as integer moments of g (sum g, sum x g, sum y g over n
     // pixels), combined with the white level at the end.
     std::int64_t n = 0, sumX = 0, sumY = 0, sumG = 0, sumXG = 0, sumYG = 0;

@@ -70,6 +70,7 @@ struct FeatureWorkspace {
   cv::Mat binary;         // the re-thresholded crop, 255 white, 0 black (modes other than SubPixel)
   cv::Mat visited;        // full path ORG: pixels already taken
   std::vector<SpotRun> runs;
+  std::vector<int> runBounds;    // one row's dark runs, start and end in turn
   std::vector<int> componentOf;  // per root run: its component's index
   std::vector<SpotComponent> components;
 };
@@ -79,6 +80,9 @@ struct SpotFeatures {
   Eigen::Vector2d offset_spot = Eigen::Vector2d::Zero();
   int candidates = 0;  // components of spot size found
 };
+
+// The sub-pixel mode's crop histogram samples at least this many pixels (see rethresholdCrop).
+constexpr int kCropHistogramPixels = 4096;
 
 // Band half-width (px) about the detected ellipse in which MOD and SubPixel search the rim.
 double contourBandPx(const Ellipse& detected);
@@ -90,10 +94,10 @@ Status targetCrop(const Ellipse& detected, int marginPx, cv::Size imageSize, cv:
 // The crop's threshold, from its own histogram (ThresholdUndefined on a flat crop), or with
 // None the frame's own threshold `frameThreshold` (InvalidSettings when that is negative).
 // The binary crop itself is made by extractContour for the modes that read it.
-// `sampleRows`: a crop of at least 2 x 8192 pixels is histogrammed on every k-th row (at
-// least 8192 pixels), for the sub-pixel mode, which takes only its class means and a
-// starting point from the threshold; the pixel modes, whose points the threshold places,
-// histogram the whole crop.
+// `sampleRows`: a crop of at least 2 x kCropHistogramPixels pixels is histogrammed on every
+// k-th row (at least kCropHistogramPixels pixels), for the sub-pixel mode, which takes only
+// its class means and a starting point from the threshold; the pixel modes, whose points the
+// threshold places, histogram the whole crop.
 Status rethresholdCrop(const cv::Mat& grey, const cv::Rect& crop, const ThresholdOptions& rethreshold,
                        int frameThreshold, FeatureWorkspace& ws, int& threshold, bool sampleRows = false);
 
