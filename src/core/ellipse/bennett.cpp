@@ -45,6 +45,32 @@ inline std::int64_t roundHalfAway(double v) {
 // ((x + i sx) >> 16, (y + i sy) >> 16) in 16.16 fixed point.
 using Ray = BennettWorkspace::Ray;
 
+// A ray from its first step (x, y) and step (sx, sy) in 16.16 fixed point over steps
+// 0..steps, reduced to the steps inside the box. Both coordinates are monotonic in the
+// step, so the steps inside form one run: its ends are found here (rounding at the box
+// edge moves them by a cell at most) and the run is counted without tests. False when
+// no step is inside.
+inline bool runInBox(const Box& box, std::int64_t x, std::int64_t y, std::int64_t sx, std::int64_t sy, int steps,
+                     Ray& ray) {
+  const unsigned w = static_cast<unsigned>(box.w), h = static_cast<unsigned>(box.h);
+  auto inside = [&](int i) {
+    const unsigned cx = static_cast<unsigned>((x + i * sx) >> 16), cy = static_cast<unsigned>((y + i * sy) >> 16);
+    return cx < w && cy < h;
+  };
+  int first = 0, last = steps;
+  while (first <= last && !inside(first)) ++first;
+  while (last >= first && !inside(last)) --last;
+  if (first > last) return false;
+  // Inside the box the coordinates and steps fit in int32 (|step| <= one cell).
+  ray = Ray{static_cast<std::int32_t>(x + first * sx), static_cast<std::int32_t>(y + first * sy),
+            static_cast<std::int32_t>(sx), static_cast<std::int32_t>(sy), last - first + 1};
+  return true;
+}
+
+// 16.16 fixed point, the first step offset by half a cell so that truncation rounds to
+// the nearest cell.
+constexpr double kFixedOne = 65536.0;
+
 // The ray from m along u (unit), clipped to the box, in steps of one cell along the
 // dominant axis, so no cell is counted twice. False when no cell is in the box.
 inline bool clipRay(const Box& box, double mx, double my, double ux, double uy, Ray& ray) {
@@ -58,27 +84,53 @@ inline bool clipRay(const Box& box, double mx, double my, double ux, double uy, 
   if (uy < 0) tmax = std::min(tmax, (lo_y - my) / uy);
   const double step = 1.0 / std::max(std::abs(ux), std::abs(uy));
   const int steps = static_cast<int>(tmax / step);
-  // 16.16 fixed point, offset by half a cell so that truncation rounds to the nearest cell.
-  constexpr double kOne = 65536.0;
-  const std::int64_t x = static_cast<std::int64_t>((mx + 0.5) * kOne), y = static_cast<std::int64_t>((my + 0.5) * kOne);
-  const std::int64_t sx = roundHalfAway(ux * step * kOne);
-  const std::int64_t sy = roundHalfAway(uy * step * kOne);
-  const unsigned w = static_cast<unsigned>(box.w), h = static_cast<unsigned>(box.h);
-  // Steps 0..steps, those inside the box counted. Both coordinates are monotonic in the
-  // step, so the steps inside form one run: its ends are found here (rounding at the
-  // box edge moves them by a cell at most) and the run is counted without tests.
-  auto inside = [&](int i) {
-    const unsigned cx = static_cast<unsigned>((x + i * sx) >> 16), cy = static_cast<unsigned>((y + i * sy) >> 16);
-    return cx < w && cy < h;
-  };
-  int first = 0, last = steps;
-  while (first <= last && !inside(first)) ++first;
-  while (last >= first && !inside(last)) --last;
-  if (first > last) return false;
-  // Inside the box the coordinates and steps fit in int32 (|step| <= one cell).
-  ray = Ray{static_cast<std::int32_t>(x + first * sx), static_cast<std::int32_t>(y + first * sy),
-            static_cast<std::int32_t>(sx), static_cast<std::int32_t>(sy), last - first + 1};
-  return true;
+  const std::int64_t x = static_cast<std::int64_t>((mx + 0.5) * kFixedOne);
+  const std::int64_t y = static_cast<std::int64_t>((my + 0.5) * kFixedOne);
+  return runInBox(box, x, y, roundHalfAway(ux * step * kFixedOne), roundHalfAway(uy * step * kFixedOne), steps, ray);
+}
+
+// The sampled pixels in box coordinates with the right-hand side c of their tangent
+// line g . X = c, as arrays (ws.points: x, y, gx, gy, c, each of m doubles).
+struct PointArrays {
+  const double *x, *y, *gx, *gy, *c;
+};
+
+// A parallel-tangent pair: every ellipse of the family is centred at M.
+inline void voteMidpoint(std::uint32_t* acc, const Box& box, double mx, double my) {
+  const int cx = static_cast<int>(roundHalfAway(mx)), cy = static_cast<int>(roundHalfAway(my));
+  if (box.contains(cx, cy)) ++acc[static_cast<std::size_t>(cy) * box.w + cx];
+}
+
+// The pairs (i, j), j in [j, m): a pair votes when both gradients point across the
+// chord to the same side of the curve (the sign condition on lambda of the thesis);
+// its ray runs from the chord's midpoint M away from T, the tangents' intersection.
+// Rays are appended to rays[ray_count...]; returns the pairs that voted.
+std::size_t scalarPairs(const PointArrays& p, std::size_t i, std::size_t j, std::size_t m, const Box& box,
+                        std::uint32_t* acc, Ray* rays, std::size_t& ray_count) {
+  const double x1 = p.x[i], y1 = p.y[i], g1x = p.gx[i], g1y = p.gy[i];
+  const double c1 = p.c[i];  // tangent line I1: g1 . X = c1
+  std::size_t pairs = 0;
+  for (; j < m; ++j) {
+    const double x2 = p.x[j], y2 = p.y[j], g2x = p.gx[j], g2y = p.gy[j];
+    const double dx = x2 - x1, dy = y2 - y1;
+    const double s1 = g1x * dx + g1y * dy, s2 = -(g2x * dx + g2y * dy);
+    if (!(s1 * s2 > 0.0)) continue;
+    const double mx = 0.5 * (x1 + x2), my = 0.5 * (y1 + y2);
+    const double det = g1x * g2y - g1y * g2x;
+    ++pairs;
+    if (det == 0.0) {
+      voteMidpoint(acc, box, mx, my);
+      continue;
+    }
+    const double c2 = p.c[j];
+    const double tx = (c1 * g2y - c2 * g1y) / det, ty = (g1x * c2 - g2x * c1) / det;
+    const double ux = mx - tx, uy = my - ty;
+    const double len2 = ux * ux + uy * uy;
+    if (!(len2 > 1e-18)) continue;
+    const double inv = 1.0 / std::sqrt(len2);
+    ray_count += clipRay(box, mx, my, ux * inv, uy * inv, rays[ray_count]);
+  }
+  return pairs;
 }
 
 #if defined(__SSE2__)
@@ -134,6 +186,82 @@ struct Ops {
   static void store(T* p, V v) { _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), v); }
 };
 #include "core/ellipse/bennett_rays.h"
+
+// scalarPairs on four pairs per step: the same operations in the same order on every
+// lane (no fused multiply-add), so every lane's ray is the scalar one to the bit; the
+// run of each ray inside the box is found per lane as there. Returns the pairs that
+// voted; j ends at the first of the (fewer than four) pairs left to scalarPairs.
+std::size_t vectorPairs(const PointArrays& p, std::size_t i, std::size_t& j, std::size_t m, const Box& box,
+                        std::uint32_t* acc, Ray* rays, std::size_t& ray_count) {
+  const __m256d x1 = _mm256_set1_pd(p.x[i]), y1 = _mm256_set1_pd(p.y[i]);
+  const __m256d g1x = _mm256_set1_pd(p.gx[i]), g1y = _mm256_set1_pd(p.gy[i]), c1 = _mm256_set1_pd(p.c[i]);
+  const __m256d zero = _mm256_setzero_pd(), half = _mm256_set1_pd(0.5), one = _mm256_set1_pd(1.0);
+  const __m256d sign = _mm256_set1_pd(-0.0), tiny = _mm256_set1_pd(1e-18);
+  const __m256d infinity = _mm256_set1_pd(std::numeric_limits<double>::infinity());
+  const __m256d fixed_one = _mm256_set1_pd(kFixedOne);
+  const __m256d lo = _mm256_set1_pd(-0.5), hi_x = _mm256_set1_pd(box.w - 0.5), hi_y = _mm256_set1_pd(box.h - 0.5);
+  // Truncation, then halves away from zero (roundHalfAway).
+  auto roundHalfAway4 = [&](__m256d v) {
+    const __m256d t = _mm256_round_pd(v, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC);
+    const __m256d frac = _mm256_sub_pd(v, t);
+    const __m256d up = _mm256_and_pd(_mm256_cmp_pd(frac, half, _CMP_GE_OQ), one);
+    const __m256d down = _mm256_and_pd(_mm256_cmp_pd(frac, _mm256_xor_pd(half, sign), _CMP_LE_OQ), one);
+    return _mm256_cvttpd_epi32(_mm256_sub_pd(_mm256_add_pd(t, up), down));
+  };
+  // The distance along u to where the ray leaves [lo, hi] in one coordinate (infinite
+  // when u is 0 in it).
+  auto exitDistance = [&](__m256d u, __m256d m_, __m256d hi) {
+    const __m256d positive = _mm256_cmp_pd(u, zero, _CMP_GT_OQ);
+    const __m256d d = _mm256_div_pd(_mm256_sub_pd(_mm256_blendv_pd(lo, hi, positive), m_), u);
+    return _mm256_blendv_pd(d, infinity, _mm256_cmp_pd(u, zero, _CMP_EQ_OQ));
+  };
+  std::size_t pairs = 0;
+  alignas(32) double mid_x[4], mid_y[4];
+  alignas(16) std::int32_t fx[4], fy[4], fsx[4], fsy[4], fsteps[4];
+  for (; j + 4 <= m; j += 4) {
+    const __m256d x2 = _mm256_loadu_pd(p.x + j), y2 = _mm256_loadu_pd(p.y + j);
+    const __m256d g2x = _mm256_loadu_pd(p.gx + j), g2y = _mm256_loadu_pd(p.gy + j);
+    const __m256d dx = _mm256_sub_pd(x2, x1), dy = _mm256_sub_pd(y2, y1);
+    const __m256d s1 = _mm256_add_pd(_mm256_mul_pd(g1x, dx), _mm256_mul_pd(g1y, dy));
+    const __m256d s2 = _mm256_xor_pd(_mm256_add_pd(_mm256_mul_pd(g2x, dx), _mm256_mul_pd(g2y, dy)), sign);
+    const __m256d vote = _mm256_cmp_pd(_mm256_mul_pd(s1, s2), zero, _CMP_GT_OQ);
+    const int votes = _mm256_movemask_pd(vote);
+    if (votes == 0) continue;
+    pairs += static_cast<std::size_t>(__builtin_popcount(static_cast<unsigned>(votes)));
+    const __m256d mx = _mm256_mul_pd(half, _mm256_add_pd(x1, x2)), my = _mm256_mul_pd(half, _mm256_add_pd(y1, y2));
+    const __m256d det = _mm256_sub_pd(_mm256_mul_pd(g1x, g2y), _mm256_mul_pd(g1y, g2x));
+    const __m256d parallel = _mm256_cmp_pd(det, zero, _CMP_EQ_OQ);
+    const int parallels = votes & _mm256_movemask_pd(parallel);
+    if (parallels != 0) {
+      _mm256_store_pd(mid_x, mx);
+      _mm256_store_pd(mid_y, my);
+      for (int k = 0; k < 4; ++k)
+        if (parallels >> k & 1) voteMidpoint(acc, box, mid_x[k], mid_y[k]);
+    }
+    const __m256d c2 = _mm256_loadu_pd(p.c + j);
+    const __m256d tx = _mm256_div_pd(_mm256_sub_pd(_mm256_mul_pd(c1, g2y), _mm256_mul_pd(c2, g1y)), det);
+    const __m256d ty = _mm256_div_pd(_mm256_sub_pd(_mm256_mul_pd(g1x, c2), _mm256_mul_pd(g2x, c1)), det);
+    __m256d ux = _mm256_sub_pd(mx, tx), uy = _mm256_sub_pd(my, ty);
+    const __m256d len2 = _mm256_add_pd(_mm256_mul_pd(ux, ux), _mm256_mul_pd(uy, uy));
+    const __m256d in_box = _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(mx, lo, _CMP_GE_OQ), _mm256_cmp_pd(mx, hi_x, _CMP_LE_OQ)),
+                                         _mm256_and_pd(_mm256_cmp_pd(my, lo, _CMP_GE_OQ), _mm256_cmp_pd(my, hi_y, _CMP_LE_OQ)));
+    const int clipped = votes & ~parallels & _mm256_movemask_pd(_mm256_and_pd(_mm256_cmp_pd(len2, tiny, _CMP_GT_OQ), in_box));
+    if (clipped == 0) continue;
+    const __m256d inv = _mm256_div_pd(one, _mm256_sqrt_pd(len2));
+    ux = _mm256_mul_pd(ux, inv);
+    uy = _mm256_mul_pd(uy, inv);
+    const __m256d tmax = _mm256_min_pd(exitDistance(ux, mx, hi_x), exitDistance(uy, my, hi_y));
+    const __m256d step = _mm256_div_pd(one, _mm256_max_pd(_mm256_andnot_pd(sign, ux), _mm256_andnot_pd(sign, uy)));
+    _mm_store_si128(reinterpret_cast<__m128i*>(fsteps), _mm256_cvttpd_epi32(_mm256_div_pd(tmax, step)));
+    _mm_store_si128(reinterpret_cast<__m128i*>(fx), _mm256_cvttpd_epi32(_mm256_mul_pd(_mm256_add_pd(mx, half), fixed_one)));
+    _mm_store_si128(reinterpret_cast<__m128i*>(fy), _mm256_cvttpd_epi32(_mm256_mul_pd(_mm256_add_pd(my, half), fixed_one)));
+    _mm_store_si128(reinterpret_cast<__m128i*>(fsx), roundHalfAway4(_mm256_mul_pd(_mm256_mul_pd(ux, step), fixed_one)));
+    _mm_store_si128(reinterpret_cast<__m128i*>(fsy), roundHalfAway4(_mm256_mul_pd(_mm256_mul_pd(uy, step), fixed_one)));
+    for (int k = 0; k < 4; ++k)
+      if (clipped >> k & 1) ray_count += runInBox(box, fx[k], fy[k], fsx[k], fsy[k], fsteps[k], rays[ray_count]);
+  }
+  return pairs;
+}
 }  // namespace avx2
 #pragma GCC pop_options
 
@@ -185,53 +313,33 @@ std::size_t accumulatePairs(std::span<const EdgePixel> path, std::size_t usable,
   const std::size_t m = ws.sample.size();
   // The sampled pixels in box coordinates, as doubles, with the right-hand side c of
   // their tangent line g . X = c: converted once, not once per pair.
-  ws.points.resize(m);
+  ws.points.resize(5 * m);
+  double* const coords = ws.points.data();
+  const PointArrays points{coords, coords + m, coords + 2 * m, coords + 3 * m, coords + 4 * m};
   for (std::size_t i = 0; i < m; ++i) {
     const EdgePixel& a = path[ws.sample[i]];
-    BennettWorkspace::Point& q = ws.points[i];
-    q.x = a.x - box.x0;
-    q.y = a.y - box.y0;
-    q.gx = a.gx;
-    q.gy = a.gy;
-    q.c = q.gx * q.x + q.gy * q.y;
+    const double x = a.x - box.x0, y = a.y - box.y0, gx = a.gx, gy = a.gy;
+    coords[i] = x;
+    coords[m + i] = y;
+    coords[2 * m + i] = gx;
+    coords[3 * m + i] = gy;
+    coords[4 * m + i] = gx * x + gy * y;
   }
   // The rays of one pixel's pairs are clipped first and counted after: the clipping's
   // chain of divisions for one pair then overlaps the next pair's instead of waiting
   // for a counting loop.
   ws.rays.resize(m);
   ws.cells.resize(static_cast<std::size_t>(std::max(box.w, box.h)) + 8);  // a ray's cells, whole vectors
+#if defined(__SSE2__)
+  const bool wide = hasAvx2();
+#endif
   std::size_t pairs = 0;
   for (std::size_t i = 0; i < m; ++i) {
-    std::size_t rays = 0;
-    const BennettWorkspace::Point& a = ws.points[i];
-    const double x1 = a.x, y1 = a.y;
-    const double g1x = a.gx, g1y = a.gy;
-    const double c1 = a.c;  // tangent line I1: g1 . X = c1
-    for (std::size_t j = i + 1; j < m; ++j) {
-      const BennettWorkspace::Point& b = ws.points[j];
-      const double x2 = b.x, y2 = b.y;
-      const double g2x = b.gx, g2y = b.gy;
-      const double dx = x2 - x1, dy = y2 - y1;
-      // Both gradients must point across the chord to the same side of the curve:
-      // the sign condition on lambda of the thesis.
-      const double s1 = g1x * dx + g1y * dy, s2 = -(g2x * dx + g2y * dy);
-      if (!(s1 * s2 > 0.0)) continue;
-      const double mx = 0.5 * (x1 + x2), my = 0.5 * (y1 + y2);
-      const double det = g1x * g2y - g1y * g2x;
-      ++pairs;
-      if (det == 0.0) {  // parallel tangents: every ellipse of the family is centred at M
-        const int cx = static_cast<int>(roundHalfAway(mx)), cy = static_cast<int>(roundHalfAway(my));
-        if (box.contains(cx, cy)) ++acc[static_cast<std::size_t>(cy) * box.w + cx];
-        continue;
-      }
-      const double c2 = b.c;
-      const double tx = (c1 * g2y - c2 * g1y) / det, ty = (g1x * c2 - g2x * c1) / det;
-      const double ux = mx - tx, uy = my - ty;
-      const double len2 = ux * ux + uy * uy;
-      if (!(len2 > 1e-18)) continue;
-      const double inv = 1.0 / std::sqrt(len2);
-      rays += clipRay(box, mx, my, ux * inv, uy * inv, ws.rays[rays]);
-    }
+    std::size_t rays = 0, j = i + 1;
+#if defined(__SSE2__)
+    if (wide) pairs += avx2::vectorPairs(points, i, j, m, box, acc, ws.rays.data(), rays);
+#endif
+    pairs += scalarPairs(points, i, j, m, box, acc, ws.rays.data(), rays);
     voteRays(acc, box, std::span<const Ray>(ws.rays.data(), rays), ws.cells.data());
   }
   return pairs;

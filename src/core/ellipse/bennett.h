@@ -51,15 +51,12 @@ struct BennettResult {
 };
 
 struct BennettWorkspace {
-  struct Point {
-    double x, y, gx, gy, c;  // a sampled pixel in box coordinates; its tangent line g . X = c
-  };
   struct Ray {
     std::int32_t x, y, sx, sy;  // first cell and step, 16.16 fixed point
     std::int32_t count;         // cells
   };
   std::vector<std::uint32_t> accumulator;  // votes per cell
-  std::vector<Point> points;               // the sampled pixels
+  std::vector<double> points;  // the sampled pixels: x, y, gx, gy and c of g . X = c, m each
   std::vector<Ray> rays;                   // the clipped rays of one pixel's pairs
   std::vector<std::int32_t> cells;         // the accumulator indices of one ray's cells
   std::vector<std::uint32_t> sample;  // indices of the sampled path pixels
