@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 namespace imagepro {
 namespace {
@@ -21,6 +22,31 @@ CameraModel exaggeratedCamera() {
   const Distortion& d = kThesisCameraDistortion;
   cam.distortion = {2.5 * d.k1, 2.5 * d.k2, 2.5 * d.p1, 2.5 * d.p2};
   return cam;
+}
+
+// undistortPoints corrects two points at a time in vector lanes (SSE2), an odd last one
+// alone: each point comes out as undistortTaylor gives it, to the bit, over the whole image
+// (and beyond it) for the thesis camera, the exaggerated one and a radial-only one.
+TEST(Undistort, PointsInVectorLanesEqualTheTaylorInverseToTheBit) {
+  CameraModel radialOnly;
+  radialOnly.distortion = {kThesisCameraDistortion.k1, kThesisCameraDistortion.k2, 0.0, 0.0};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-0.5, 0.5);
+  for (const CameraModel& cam : {thesisCamera(), exaggeratedCamera(), radialOnly}) {
+    std::vector<Eigen::Vector2d> points;
+    for (int v = -40; v <= cam.height + 40; v += 7)
+      for (int u = -40; u <= cam.width + 40; u += 5) points.emplace_back(u + jitter(rng), v + jitter(rng));
+    points.emplace_back(cam.u0(), cam.v0());
+    if (points.size() % 2 == 0) points.emplace_back(0.0, 0.0);  // an odd count: the last one alone
+    ASSERT_EQ(points.size() % 2, 1u);
+    std::vector<Eigen::Vector2d> corrected = points;
+    undistortPoints(cam, false, corrected);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Eigen::Vector2d expected = undistortTaylor(cam, points[i]);
+      ASSERT_EQ(corrected[i].x(), expected.x()) << i;
+      ASSERT_EQ(corrected[i].y(), expected.y()) << i;
+    }
+  }
 }
 
 TEST(Undistort, JacobianMatchesFiniteDifferences) {
