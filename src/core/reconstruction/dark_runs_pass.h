@@ -1,7 +1,8 @@
 // The text of the spot search's row scan, included by features.cpp once per vector width
 // (SSE2: 16 pixels per comparison; AVX2: 32) inside a namespace that defines
-//   struct Ops { static constexpr int kBlock; static unsigned darkMask(const std::uint8_t* p, V level); };
-// darkMask gives bit i set when p[i] <= level, for the kBlock pixels at p. Private to
+//   struct Ops { kBlock; Level, level(cut), value(level); Block, load(p), min(a, b);
+//                dark(block, level); darkMask(p, level) };
+// dark and darkMask give bit i set when pixel i of the block (at p) is <= level. Private to
 // features.cpp: no include guard, no declarations of its own outside the namespace.
 
 // The first x in [x, x1] with row[x] <= level (Dark) or row[x] > level (!Dark), x1 + 1 if
@@ -26,6 +27,31 @@ inline int firstOf(const std::uint8_t* row, int x, int x1, const Ops::Level& lev
   const std::uint8_t cut = Ops::value(level);
   while (x <= x1 && (row[x] <= cut) != Dark) ++x;
   return x;
+}
+
+// Whether any of the n rows (pointers to the same x origin) has a pixel <= level in [x0, x1]:
+// their minimum tested kBlock pixels per step (the last, partial block as the whole block
+// ending at x1 when the pixels from `lowest` on allow, else pixel by pixel).
+inline bool anyDark(const std::uint8_t* const* rows, int n, int x0, int x1, std::uint8_t cut, int lowest) {
+  constexpr int kBlock = Ops::kBlock;
+  const Ops::Level level = Ops::level(cut);
+  auto blockHasDark = [&](int at) {
+    Ops::Block m = Ops::load(rows[0] + at);
+    for (int k = 1; k < n; ++k) m = Ops::min(m, Ops::load(rows[k] + at));
+    return Ops::dark(m, level);
+  };
+  int x = x0;
+  for (; x + kBlock <= x1 + 1; x += kBlock)
+    if (blockHasDark(x) != 0) return true;
+  if (x > x1) return false;
+  if (x1 + 1 - kBlock >= lowest) {
+    const int at = x1 + 1 - kBlock;
+    return (blockHasDark(at) & (0xFFFFFFFFu >> (32 - kBlock) << (x - at))) != 0;
+  }
+  for (; x <= x1; ++x)
+    for (int k = 0; k < n; ++k)
+      if (rows[k][x] <= cut) return true;
+  return false;
 }
 
 // The dark runs (pixels <= level) of row[x0..x1] as inclusive bounds, start and end in turn,

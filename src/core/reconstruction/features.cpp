@@ -125,13 +125,16 @@ namespace sse2 {
 struct Ops {
   static constexpr int kBlock = 16;
   using Level = __m128i;
+  using Block = __m128i;
   static Level level(std::uint8_t cut) { return _mm_set1_epi8(static_cast<char>(cut)); }
   static std::uint8_t value(const Level& l) { return static_cast<std::uint8_t>(_mm_cvtsi128_si32(l)); }
+  static Block load(const std::uint8_t* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); }
+  static Block min(const Block& a, const Block& b) { return _mm_min_epu8(a, b); }
   // g <= level exactly when min(g, level) == g.
-  static unsigned darkMask(const std::uint8_t* p, const Level& l) {
-    const __m128i g = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+  static unsigned dark(const Block& g, const Level& l) {
     return static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_min_epu8(g, l), g)));
   }
+  static unsigned darkMask(const std::uint8_t* p, const Level& l) { return dark(load(p), l); }
 };
 #include "core/reconstruction/dark_runs_pass.h"
 }  // namespace sse2
@@ -142,14 +145,17 @@ namespace avx2 {
 struct Ops {
   static constexpr int kBlock = 32;
   using Level = __m256i;
+  using Block = __m256i;
   static Level level(std::uint8_t cut) { return _mm256_set1_epi8(static_cast<char>(cut)); }
   static std::uint8_t value(const Level& l) {
     return static_cast<std::uint8_t>(_mm_cvtsi128_si32(_mm256_castsi256_si128(l)));
   }
-  static unsigned darkMask(const std::uint8_t* p, const Level& l) {
-    const __m256i g = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+  static Block load(const std::uint8_t* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
+  static Block min(const Block& a, const Block& b) { return _mm256_min_epu8(a, b); }
+  static unsigned dark(const Block& g, const Level& l) {
     return static_cast<unsigned>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_min_epu8(g, l), g)));
   }
+  static unsigned darkMask(const std::uint8_t* p, const Level& l) { return dark(load(p), l); }
 };
 #include "core/reconstruction/dark_runs_pass.h"
 }  // namespace avx2
@@ -159,25 +165,41 @@ namespace scalar {
 struct Ops {
   static constexpr int kBlock = 16;
   using Level = std::uint8_t;
+  using Block = std::array<std::uint8_t, kBlock>;
   static Level level(std::uint8_t cut) { return cut; }
   static std::uint8_t value(Level l) { return l; }
-  static unsigned darkMask(const std::uint8_t* p, Level l) {
+  static Block load(const std::uint8_t* p) {
+    Block b;
+    std::memcpy(b.data(), p, kBlock);
+    return b;
+  }
+  static Block min(const Block& a, const Block& b) {
+    Block m;
+    for (int i = 0; i < kBlock; ++i) m[i] = std::min(a[i], b[i]);
+    return m;
+  }
+  static unsigned dark(const Block& g, Level l) {
     unsigned mask = 0;
-    for (int i = 0; i < kBlock; ++i) mask |= (p[i] <= l ? 1u : 0u) << i;
+    for (int i = 0; i < kBlock; ++i) mask |= (g[i] <= l ? 1u : 0u) << i;
     return mask;
   }
+  static unsigned darkMask(const std::uint8_t* p, Level l) { return dark(load(p), l); }
 };
 #include "core/reconstruction/dark_runs_pass.h"
 }  // namespace scalar
 #endif
 
-using DarkRunsFn = int (*)(const std::uint8_t*, int, int, std::uint8_t, int, int*);
+struct DarkRowScan {
+  int (*runs)(const std::uint8_t*, int, int, std::uint8_t, int, int*);
+  bool (*any)(const std::uint8_t* const*, int, int, int, std::uint8_t, int);
+};
 
-DarkRunsFn darkRunsForThisProcessor() {
+DarkRowScan darkRowScanForThisProcessor() {
 #if defined(__SSE2__)
-  return simdLevel() == SimdLevel::Avx2 ? &avx2::darkRuns : &sse2::darkRuns;
+  if (simdLevel() == SimdLevel::Avx2) return {&avx2::darkRuns, &avx2::anyDark};
+  return {&sse2::darkRuns, &sse2::anyDark};
 #else
-  return &scalar::darkRuns;
+  return {&scalar::darkRuns, &scalar::anyDark};
 #endif
 }
 
@@ -696,19 +718,44 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
   runs.clear();
   std::vector<int>& bounds = ws.runBounds;
   bounds.resize(static_cast<std::size_t>(crop.width) + 2);  // a row's runs at most
-  const DarkRunsFn darkRuns = darkRunsForThisProcessor();
+  const DarkRowScan scan = darkRowScanForThisProcessor();
   // Black runs inside the search ellipse, row by row; each run is joined to the
-  // 8-connected runs of the row above.
+  // 8-connected runs of the row above. Rows are first tested kGroup at a time for any dark
+  // pixel over the union of their spans (their minimum, one comparison per block for all of
+  // them): most rows of the disk have none, and a group without one has no runs.
+  constexpr int kGroup = 4;
+  std::array<int, kGroup> spanX0{}, spanX1{};
+  std::array<const std::uint8_t*, kGroup> groupRows{};
   std::size_t prevBegin = 0, prevEnd = 0;
-  for (int r = 0; r < crop.height; ++r) {
-    const int y = crop.y + r;
-    double xl, xr;
-    const std::size_t rowBegin = runs.size();
-    if (inner.rowCrossings(y, xl, xr)) {
-      const int x0 = std::max(ceilToInt(xl), crop.x) - crop.x;
-      const int x1 = std::min(floorToInt(xr), crop.x + crop.width - 1) - crop.x;
-      const std::uint8_t* row = grey.ptr<std::uint8_t>(y) + crop.x;
-      const int count = x0 <= x1 ? darkRuns(row, x0, x1, spotLevel, -crop.x, bounds.data()) : 0;
+  for (int r0 = 0; r0 < crop.height; r0 += kGroup) {
+    const int n = std::min(kGroup, crop.height - r0);
+    int unionX0 = crop.width, unionX1 = -1, spans = 0;
+    for (int k = 0; k < n; ++k) {
+      const int y = crop.y + r0 + k;
+      double xl, xr;
+      spanX0[k] = 0;
+      spanX1[k] = -1;  // empty
+      if (inner.rowCrossings(y, xl, xr)) {
+        spanX0[k] = std::max(ceilToInt(xl), crop.x) - crop.x;
+        spanX1[k] = std::min(floorToInt(xr), crop.x + crop.width - 1) - crop.x;
+      }
+      groupRows[k] = grey.ptr<std::uint8_t>(y) + crop.x;
+      if (spanX0[k] <= spanX1[k]) {
+        ++spans;
+        unionX0 = std::min(unionX0, spanX0[k]);
+        unionX1 = std::max(unionX1, spanX1[k]);
+      }
+    }
+    if (spans == 0 || (spans == n && !scan.any(groupRows.data(), n, unionX0, unionX1, spotLevel, -crop.x))) {
+      prevBegin = prevEnd = runs.size();  // rows without runs
+      continue;
+    }
+    for (int k = 0; k < n; ++k) {
+      const int r = r0 + k;
+      const std::size_t rowBegin = runs.size();
+      const int count = spanX0[k] <= spanX1[k]
+                            ? scan.runs(groupRows[k], spanX0[k], spanX1[k], spotLevel, -crop.x, bounds.data())
+                            : 0;
       for (int i = 0; i < count; ++i) {
         const int start = bounds[2 * i], x = bounds[2 * i + 1] + 1;
         const int id = static_cast<int>(runs.size());
@@ -720,9 +767,9 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
           }
         }
       }
+      prevBegin = rowBegin;
+      prevEnd = runs.size();
     }
-    prevBegin = rowBegin;
-    prevEnd = runs.size();
   }
 
   // Components: area and box of every set of joined runs.
