@@ -724,38 +724,42 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
   // pixel over the union of their spans (their minimum, one comparison per block for all of
   // them): most rows of the disk have none, and a group without one has no runs.
   constexpr int kGroup = 4;
-  std::array<int, kGroup> spanX0{}, spanX1{};
+  // The group's span: the search ellipse's left crossing is convex and its right one concave
+  // in y, so over a group they reach beyond their values at its end rows only about the
+  // ellipse's leftmost or rightmost point, where its full width is taken; a pixel more either
+  // side covers rounding. A wider span only sends more groups to the row-by-row search.
+  const double halfWidth = std::sqrt(inner.R / (inner.P * inner.R - inner.Q * inner.Q));
+  const double yLeftmost = inner.cy + inner.Q * halfWidth / inner.R;
+  const double yRightmost = inner.cy - inner.Q * halfWidth / inner.R;
   std::array<const std::uint8_t*, kGroup> groupRows{};
   std::size_t prevBegin = 0, prevEnd = 0;
   for (int r0 = 0; r0 < crop.height; r0 += kGroup) {
     const int n = std::min(kGroup, crop.height - r0);
-    int unionX0 = crop.width, unionX1 = -1, spans = 0;
-    for (int k = 0; k < n; ++k) {
-      const int y = crop.y + r0 + k;
-      double xl, xr;
-      spanX0[k] = 0;
-      spanX1[k] = -1;  // empty
-      if (inner.rowCrossings(y, xl, xr)) {
-        spanX0[k] = std::max(ceilToInt(xl), crop.x) - crop.x;
-        spanX1[k] = std::min(floorToInt(xr), crop.x + crop.width - 1) - crop.x;
-      }
-      groupRows[k] = grey.ptr<std::uint8_t>(y) + crop.x;
-      if (spanX0[k] <= spanX1[k]) {
-        ++spans;
-        unionX0 = std::min(unionX0, spanX0[k]);
-        unionX1 = std::max(unionX1, spanX1[k]);
+    const int yA = crop.y + r0, yB = yA + n - 1;
+    double leftA, rightA, leftB, rightB;
+    if (n == kGroup && inner.rowCrossings(yA, leftA, rightA) && inner.rowCrossings(yB, leftB, rightB)) {
+      double left = std::min(leftA, leftB), right = std::max(rightA, rightB);
+      if (yLeftmost > yA - 1 && yLeftmost < yB + 1) left = inner.cx - halfWidth;
+      if (yRightmost > yA - 1 && yRightmost < yB + 1) right = inner.cx + halfWidth;
+      const int x0 = std::max(floorToInt(left) - 1, crop.x) - crop.x;
+      const int x1 = std::min(ceilToInt(right) + 1, crop.x + crop.width - 1) - crop.x;
+      for (int k = 0; k < n; ++k) groupRows[k] = grey.ptr<std::uint8_t>(yA + k) + crop.x;
+      if (x0 > x1 || !scan.any(groupRows.data(), n, x0, x1, spotLevel, -crop.x)) {
+        prevBegin = prevEnd = runs.size();  // rows without runs
+        continue;
       }
     }
-    if (spans == 0 || (spans == n && !scan.any(groupRows.data(), n, unionX0, unionX1, spotLevel, -crop.x))) {
-      prevBegin = prevEnd = runs.size();  // rows without runs
-      continue;
-    }
     for (int k = 0; k < n; ++k) {
-      const int r = r0 + k;
+      const int r = r0 + k, y = crop.y + r;
       const std::size_t rowBegin = runs.size();
-      const int count = spanX0[k] <= spanX1[k]
-                            ? scan.runs(groupRows[k], spanX0[k], spanX1[k], spotLevel, -crop.x, bounds.data())
-                            : 0;
+      double xl, xr;
+      int count = 0;
+      if (inner.rowCrossings(y, xl, xr)) {
+        const int x0 = std::max(ceilToInt(xl), crop.x) - crop.x;
+        const int x1 = std::min(floorToInt(xr), crop.x + crop.width - 1) - crop.x;
+        const std::uint8_t* row = grey.ptr<std::uint8_t>(y) + crop.x;
+        count = x0 <= x1 ? scan.runs(row, x0, x1, spotLevel, -crop.x, bounds.data()) : 0;
+      }
       for (int i = 0; i < count; ++i) {
         const int start = bounds[2 * i], x = bounds[2 * i + 1] + 1;
         const int id = static_cast<int>(runs.size());
