@@ -25,6 +25,7 @@ constexpr double kScreenShare = 0.5;
 // over its mirrored cells stays below this (exact symmetry gives 0; subsampling and
 // float rounding give a few per cent).
 constexpr double kAsymmetryLimit = 0.25;
+constexpr std::size_t kSpareCounts = 8;  // the widest vector's lanes
 
 struct Box {
   int x0, y0, w, h;
@@ -268,10 +269,11 @@ std::size_t vectorPairs(const PointArrays& p, std::size_t i, std::size_t& j, std
 inline bool hasAvx2() { return simdLevel() == SimdLevel::Avx2; }
 
 void voteRays(std::uint32_t* acc, const Box& box, std::span<const Ray> rays, std::int32_t* cells) {
+  const std::int32_t spare = box.w * box.h;
   if (hasAvx2())
-    avx2::voteRays(acc, box.w, rays, cells);
+    avx2::voteRays(acc, box.w, spare, rays, cells);
   else
-    sse2::voteRays(acc, box.w, rays, cells);
+    sse2::voteRays(acc, box.w, spare, rays, cells);
 }
 std::uint32_t maxCount(const std::uint32_t* acc, std::size_t n) {
   return hasAvx2() ? avx2::maxCount(acc, n) : sse2::maxCount(acc, n);
@@ -308,7 +310,10 @@ std::size_t accumulatePairs(std::span<const EdgePixel> path, std::size_t usable,
     if (needed == available || static_cast<std::size_t>(rng() % available) < needed) ws.sample.push_back(i);
     ++seen;
   }
-  ws.accumulator.assign(static_cast<std::size_t>(box.w) * box.h, 0u);
+  // The box's cells and kSpareCounts more for the lanes past a ray's end (bennett_rays.h),
+  // dropped when the counting is done.
+  const std::size_t grid = static_cast<std::size_t>(box.w) * box.h;
+  ws.accumulator.assign(grid + kSpareCounts, 0u);
   std::uint32_t* acc = ws.accumulator.data();
   const std::size_t m = ws.sample.size();
   // The sampled pixels in box coordinates, as doubles, with the right-hand side c of
@@ -342,6 +347,7 @@ std::size_t accumulatePairs(std::span<const EdgePixel> path, std::size_t usable,
     pairs += scalarPairs(points, i, j, m, box, acc, ws.rays.data(), rays);
     voteRays(acc, box, std::span<const Ray>(ws.rays.data(), rays), ws.cells.data());
   }
+  ws.accumulator.resize(grid);  // keeps the capacity
   return pairs;
 }
 

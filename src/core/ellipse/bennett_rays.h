@@ -10,30 +10,31 @@
 // the votes. Lanes past the ray's end are computed but never counted.
 
 // Adds a vote to every cell of each ray; `cells` holds at least the longest ray's
-// count rounded up to kLanes. The lanes past a ray's end are pointed at its first cell,
-// so the counting loop runs over whole vectors without a test per cell, and that cell
-// gives the extra votes back after.
-inline void voteRays(std::uint32_t* acc, int stride, std::span<const Ray> rays, std::int32_t* cells) {
+// count rounded up to kLanes, and acc has kLanes spare counts past its `spare` grid
+// cells. The lanes past a ray's end are pointed at the spare counts, one per lane, so
+// the counting loop runs over whole vectors without a test per cell and no count is
+// incremented twice in a row (which would chain the increments through memory).
+inline void voteRays(std::uint32_t* acc, int stride, std::int32_t spare, std::span<const Ray> rays,
+                     std::int32_t* cells) {
   const typename Ops::V row_column_weights = Ops::set1((1 << 16) | stride);
   const typename Ops::V column_half = Ops::set1(static_cast<std::int32_t>(0xFFFF0000u));
   const typename Ops::V lane_numbers = Ops::ramp(0, 1), lane_step = Ops::set1(Ops::kLanes);
+  const typename Ops::V spare_cells = Ops::ramp(spare, 1);
   for (const Ray& r : rays) {
     const int count = r.count, padded = (count + Ops::kLanes - 1) & -Ops::kLanes;
-    const std::int32_t first = (r.y >> 16) * stride + (r.x >> 16);
-    const typename Ops::V first_cell = Ops::set1(first), cell_count = Ops::set1(count);
+    const typename Ops::V cell_count = Ops::set1(count);
     typename Ops::V x = Ops::ramp(r.x, r.sx), y = Ops::ramp(r.y, r.sy), lane = lane_numbers;
     const typename Ops::V step_x = Ops::set1(Ops::kLanes * r.sx), step_y = Ops::set1(Ops::kLanes * r.sy);
     for (int k = 0; k < padded; k += Ops::kLanes) {
       const typename Ops::V row_column = Ops::bitOr(Ops::shiftRight16(y), Ops::bitAnd(x, column_half));
       const typename Ops::V index = Ops::maddInt16(row_column, row_column_weights);
-      Ops::store(cells + k, Ops::select(Ops::greater(cell_count, lane), index, first_cell));
+      Ops::store(cells + k, Ops::select(Ops::greater(cell_count, lane), index, spare_cells));
       x = Ops::add(x, step_x);
       y = Ops::add(y, step_y);
       lane = Ops::add(lane, lane_step);
     }
     for (int k = 0; k < padded; k += Ops::kLanes)
       for (int j = 0; j < Ops::kLanes; ++j) ++acc[cells[k + j]];
-    acc[first] -= static_cast<std::uint32_t>(padded - count);
   }
 }
 
