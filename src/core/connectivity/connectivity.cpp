@@ -36,7 +36,7 @@ using NeighbourOffsets = std::array<std::ptrdiff_t, 9>;
 // reads the rows above and below as four entries each (x - 1 .. x + 2), which the index
 // image's spare column keeps inside the buffer, and the centre's row entry by entry: the
 // centre's own entry was written as it joined its path a pixel or two before, and a
-// wider read over it waits until that write reaches the cache (10-18 % of the time).
+// wider read over it waits until that write reaches the cache (8-18 % of the time).
 inline std::uint32_t freshNeighbours(const std::int32_t* centre, const NeighbourOffsets& offsets) {
 #if defined(__SSE2__)
   auto signs = [](const std::int32_t* p) {
