@@ -380,11 +380,13 @@ std::string libraryFile(const TableRow& row) {
 
 class CliLibrary : public ::testing::Test {
  protected:
-  // The library is written once for every test of this group.
+  // The library is written once for every test of this group run in one process; ctest
+  // runs each test in a process of its own, in parallel, so each process has its folder.
   static void SetUpTestSuite() {
-    dir_ = freshDir("cli_stages_library");
+    dir_ = freshDir("cli_stages_library_" + std::to_string(getpid()));
     run_ = cli("library " + dir_.string());
   }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
   static fs::path dir_;
   static CliRun run_;
 };
