@@ -16,6 +16,8 @@
 // raster order (row, then column).
 #include <opencv2/core.hpp>
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -29,11 +31,14 @@ namespace imagepro {
 // Buffers reused from frame to frame.
 struct ConnectivityWorkspace {
   // (height + 2) x (width + 3), CV_32SC1: the list index of the edge pixel at
-  // (x, y) is at (y + 1, x + 1), -1 elsewhere (a frame, and a spare last column). Every entry is -1 between calls, so a
-  // frame only touches the entries of its own edge pixels.
+  // (x, y) is at (y + 1, x + 1), -1 elsewhere (a frame, and a spare last column). Every
+  // entry is -1 between calls, so a frame only touches the entries of its own edge pixels.
   cv::Mat index;
-  std::vector<std::uint32_t> offsets;     // each input pixel's position in `index`
-  std::vector<std::uint32_t> order;       // CN1: index-image position of each pixel, in path order
+  // CN1: the index-image offset of the first fresh neighbour for each 8-bit neighbour
+  // mask (built with the index image, as it depends on its row length).
+  std::array<std::ptrdiff_t, 256> first_neighbour{};
+  std::vector<std::int32_t*> queue;       // CN1: index-image entry of each pixel, in path order
+  std::vector<std::uint8_t> joined;       // CN1: 1 once a list entry is in a path; entry n stops the scan at 0
   std::vector<std::uint32_t> unassigned;  // CN0: input indices not yet in a path, in input order
 };
 

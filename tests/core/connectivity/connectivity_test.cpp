@@ -213,5 +213,64 @@ TEST(Connectivity, BadInputGivesNamedStatusAndLeavesWorkspaceUsable) {
   }
 }
 
+// Lists in raster order take a faster check (four pixels at a time, then one by one):
+// a bad entry at any position of either part is still named, leaves nothing behind, and
+// a list that leaves raster order part-way is still grouped like CN0 does.
+TEST(Connectivity, RasterOrderedListsAreCheckedAtEveryPosition) {
+  const cv::Size size(40, 30);
+  EdgeList raster;
+  for (int y = 2; y < 28; y += 5)
+    for (int x = 3; x < 37; x += 3) raster.push_back({static_cast<std::int16_t>(x), static_cast<std::int16_t>(y), 1, 2});
+  ASSERT_EQ(raster.size() % 4, 0u);
+  raster.push_back({38, 28, 0, 0});  // a tail past the last whole group of four
+  ConnectivityWorkspace ws, ws0;
+  Paths paths, cn0;
+  ASSERT_EQ(connectCN1(raster, size, paths, ws), Status::Ok);
+  expectValidPartition(raster, size, paths, "raster");
+  for (std::size_t at = 0; at < raster.size(); ++at) {
+    const std::string where = "entry " + std::to_string(at);
+    for (const auto& [bad, name] : std::vector<std::pair<EdgePixel, std::string>>{
+             {{40, raster[at].y, 0, 0}, "column past the edge"},
+             {{-1, raster[at].y, 0, 0}, "negative column"},
+             {{raster[at].x, -1, 0, 0}, "negative row"},
+             {{raster[at].x, 30, 0, 0}, "row past the edge"},
+             {at > 0 ? raster[at - 1] : raster[1], "repeat"}}) {
+      EdgeList edges = raster;
+      edges[at] = bad;
+      EXPECT_EQ(connectCN1(edges, size, paths, ws), Status::InvalidEdgeList) << where << ", " << name;
+      EXPECT_EQ(paths.pathCount(), 0u);
+      EXPECT_TRUE(paths.pixels.empty());
+    }
+    // Valid, but out of raster order from here on: two pixels swapped.
+    if (at + 1 < raster.size()) {
+      EdgeList edges = raster;
+      std::swap(edges[at], edges[at + 1]);
+      ASSERT_EQ(connectCN1(edges, size, paths, ws), Status::Ok) << where;
+      ASSERT_EQ(connectCN0(edges, size, cn0, ws0), Status::Ok) << where;
+      expectIdentical(cn0, paths, where);
+      expectValidPartition(edges, size, paths, where);
+    }
+  }
+  // The failed calls left the index image clean: the first list again gives its paths.
+  ASSERT_EQ(connectCN1(raster, size, paths, ws), Status::Ok);
+  expectValidPartition(raster, size, paths, "raster again");
+}
+
+// Index-image rows longer than 32767 entries, too long for the four-at-a-time offsets
+// (16-bit products), are indexed one by one.
+TEST(Connectivity, VeryWideImagesAreGroupedToo) {
+  const cv::Size size(32767, 3);
+  EdgeList edges;
+  for (int x = 0; x < 12; ++x) edges.push_back({static_cast<std::int16_t>(32750 + x), 1, 0, 0});
+  edges.push_back({5, 2, 0, 0});
+  std::sort(edges.begin(), edges.end(), rasterBefore);
+  ConnectivityWorkspace ws, ws0;
+  Paths paths, cn0;
+  ASSERT_EQ(connectCN1(edges, size, paths, ws), Status::Ok);
+  ASSERT_EQ(connectCN0(edges, size, cn0, ws0), Status::Ok);
+  EXPECT_EQ(paths.pathCount(), 2u);
+  expectIdentical(cn0, paths, "wide");
+}
+
 }  // namespace
 }  // namespace imagepro
