@@ -38,7 +38,7 @@ struct ConnectivityWorkspace {
   // mask (built with the index image, as it depends on its row length).
   std::array<std::ptrdiff_t, 256> first_neighbour{};
   std::vector<std::int32_t*> queue;       // CN1: index-image entry of each pixel, in path order
-  std::vector<std::uint8_t> joined;       // CN1: 1 once a list entry is in a path; entry n stops the scan at 0
+  std::vector<std::uint8_t> joined;       // CN1: 1 once a list entry is in a path; 8 more past the list, the first 0
   std::vector<std::uint32_t> unassigned;  // CN0: input indices not yet in a path, in input order
 };
 
