@@ -17,9 +17,11 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build_dir="${BUILD_DIR:-$root/build}"
 jobs="${JOBS:-2}"
 
+# libqt6opengl6-dev is only recommended by qt6-base-dev, but Qt6Charts' CMake package
+# needs Qt6OpenGL, and recommends are not installed here.
 packages=(
   build-essential cmake pkg-config ccache
-  qt6-base-dev qt6-charts-dev libgl-dev
+  qt6-base-dev qt6-charts-dev libqt6opengl6-dev libgl-dev
   libopencv-dev libopencv-contrib-dev libeigen3-dev nlohmann-json3-dev
   libv4l-dev libapriltag-dev
   libgtest-dev libgmock-dev libbenchmark-dev
