@@ -165,6 +165,8 @@ QWidget* reconstructionPanel(SettingsBinder& binder) {
                       "exactUndistortion", QObject::tr("Newton inverse of the distortion model instead of the Taylor inverse (thesis 4.5)"));
   form->addRow(exact);
   form->addRow(QObject::tr("Contour"), named(binder.combo<ContourMode>([r](Settings& s) -> auto& { return r(s).contour_mode; }), "contourMode"));
+  form->addRow(named(binder.check(QObject::tr("Centre spot in the normal"), [r](Settings& s) -> auto& { return r(s).centre_spot_normal; }),
+                     "centreSpotNormal", QObject::tr("Weigh the centre spot's polar line into the target plane's normal (most gain seen head-on)")));
   form->addRow(QObject::tr("Crop margin"), named(binder.intSpin([r](Settings& s) -> auto& { return r(s).crop_margin_px; }, 0, 1000, QStringLiteral(" px")),
                                                  "cropMargin", QObject::tr("Pixels added around the detected target before re-thresholding")));
   binder.onAnyUpdate([&binder, exact] { exact->setEnabled(binder.model().pipeline.reconstruction.distortion_correction); });

@@ -120,6 +120,7 @@ struct Method {
   ContourMode mode = ContourMode::SubPixel;
   bool correction = true;
   bool marker = false;
+  bool centreSpotNormal = true;  // ReconstructionOptions::centre_spot_normal
 };
 
 struct Outcome {
@@ -133,8 +134,8 @@ struct NormalOutcome {
   double tilt_deg = 0.0;
   // The polar line of the centre spot's centroid as measured (perspective-biased), and of
   // the same centroid with the bias removed: the image of the disk's centre, as the eigen
-  // route's choice of candidate sees it.
-  double eigen_deg = 0.0, polar_raw_deg = 0.0, polar_deg = 0.0;
+  // route's choice of candidate sees it; and the two normals weighed together.
+  double eigen_deg = 0.0, polar_raw_deg = 0.0, polar_deg = 0.0, weighed_deg = 0.0;
 };
 
 struct Condition {
@@ -234,10 +235,11 @@ void runCondition(const Settings& settings, Condition& c, int frames, std::uint6
         ReconstructionConfig config = reconstructionConfig(s);
         config.options.contour_mode = method.mode;
         config.options.distortion_correction = method.correction;
+        config.options.centre_spot_normal = method.centreSpotNormal;
         o.ok = ok(reconstructTarget(config, frame.image, detected.targets.front().ellipse, detected.threshold, ws,
                                     result));
         est = result.pose;
-        if (o.ok && method.mode == ContourMode::SubPixel && method.correction) {
+        if (o.ok && method.mode == ContourMode::SubPixel && method.correction && !method.centreSpotNormal) {
           NormalOutcome no;
           no.tilt_deg = f.tilt_deg;
           no.eigen_deg = normalErrorDeg(rotationMatrix(est).col(2), Rtrue.col(2));
@@ -258,6 +260,11 @@ void runCondition(const Settings& settings, Condition& c, int frames, std::uint6
               ok(normalFromPolarLine(s.camera, result.conic, result.centre_spot_ideal - bias, polar))
                   ? normalErrorDeg(polar, Rtrue.col(2))
                   : 180.0;
+          Pose weighed;
+          no.weighed_deg = ok(poseFromEllipse(s.camera, s.target, result.conic, result.centre_spot_ideal,
+                                              result.offset_spot_ideal, weighed, true))
+                               ? normalErrorDeg(rotationMatrix(weighed).col(2), Rtrue.col(2))
+                               : 180.0;
           c.normals.push_back(no);
         }
       }
@@ -344,7 +351,8 @@ int run(const Args& args) {
                           {"8 points MOD", ContourMode::EightPointsMod},
                           {"full path ORG", ContourMode::FullPathOrg},
                           {"full path MOD", ContourMode::FullPathMod},
-                          {"sub-pixel", ContourMode::SubPixel}};
+                          {"sub-pixel", ContourMode::SubPixel},
+                          {"sub-pixel, rim normal only", ContourMode::SubPixel, true, false, false}};
     if (withUncorrected) m.push_back({"sub-pixel, distortion not corrected", ContourMode::SubPixel, false});
     m.push_back({"ArUco 4x4 (IPPE)", ContourMode::SubPixel, true, true});
     return m;
@@ -388,10 +396,14 @@ int run(const Args& args) {
 
   // Goals, on the default contour mode with the distortion corrected.
   const Condition& main = conditions[1];
-  const ContourMode defaultMode = defaults.pipeline.reconstruction.contour_mode;
+  const ReconstructionOptions& defaultOptions = defaults.pipeline.reconstruction;
+  auto isDefault = [&](const Method& m) {
+    return !m.marker && m.correction && m.mode == defaultOptions.contour_mode &&
+           m.centreSpotNormal == defaultOptions.centre_spot_normal;
+  };
   std::size_t defaultIndex = 0, markerIndex = main.methods.size() - 1;
   for (std::size_t m = 0; m < main.methods.size(); ++m)
-    if (!main.methods[m].marker && main.methods[m].correction && main.methods[m].mode == defaultMode) defaultIndex = m;
+    if (isDefault(main.methods[m])) defaultIndex = m;
   const Summary ours = summarise(main.outcomes[defaultIndex], 0, 1e9);
   const Summary aruco = summarise(main.outcomes[markerIndex], 0, 1e9);
   md += "## Goals (issue 4), thesis camera's distortion corrected, default contour mode (" +
@@ -421,7 +433,7 @@ int run(const Args& args) {
       const Condition& c = conditions[k];
       std::size_t index = 0;
       for (std::size_t m = 0; m < c.methods.size(); ++m)
-        if (!c.methods[m].marker && c.methods[m].correction && c.methods[m].mode == defaultMode) index = m;
+        if (isDefault(c.methods[m])) index = m;
       const Summary band = summarise(c.outcomes[index], kTiltBands[b], kTiltBands[b + 1]);
       md += format("| %.0f-%.0f | %s | ", kTiltBands[b], kTiltBands[b + 1],
                    k == 0 ? "none" : "thesis camera, corrected") +
@@ -477,31 +489,36 @@ int run(const Args& args) {
     md += "\n";
   }
 
-  md += "## The plane normal: the cone's eigen-structure against the centre spot's polar line\n\n";
+  md += "## The plane normal: the cone's eigen-structure, the centre spot's polar line, and both weighed\n\n";
   md += "Same frames (thesis camera's distortion, corrected), same sub-pixel contour and conic: the normal's angle "
-        "error from the eigen-decomposition of the cone (what the reconstruction uses) and from the polar line "
+        "error from the eigen-decomposition of the cone (the rim alone), from the polar line "
         "of the centre spot's image with respect to the conic (the plane's vanishing line). The polar line is "
         "exact only for the image of the disk's centre; the spot's centroid lies off it by perspective. It is "
         "therefore given the centroid with that bias removed (computed from the spot's image conic at the "
         "estimated pose, as the reconstruction does for the offset spot), so that the comparison measures the "
-        "sensitivity to noise alone; the last column is the raw centroid, bias included.\n\n";
+        "sensitivity to noise alone; the last column is the raw centroid, bias included. *Weighed* is the "
+        "default (`centre_spot_normal`): the two normals averaged, each weighed by the inverse square of its "
+        "turn per pixel of error (docs/reconstruction.md).\n\n";
   md += "| tilt (deg) | frames | eigen median (deg) | eigen p95 (deg) | polar line median (deg) | polar line p95 (deg) "
-        "| polar / eigen, median | polar / eigen, p95 | polar line, raw centroid, median (deg) |\n";
-  md += "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+        "| polar / eigen, median | polar / eigen, p95 | polar line, raw centroid, median (deg) | weighed median (deg) "
+        "| weighed p95 (deg) |\n";
+  md += "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
   std::string ratios;
   for (std::size_t b = 0; b + 1 < kTiltBands.size(); ++b) {
-    std::vector<double> e, p, raw;
+    std::vector<double> e, p, raw, w;
     for (const NormalOutcome& n : main.normals)
       if (n.tilt_deg >= kTiltBands[b] && n.tilt_deg < kTiltBands[b + 1]) {
         e.push_back(n.eigen_deg);
         p.push_back(n.polar_deg);
         raw.push_back(n.polar_raw_deg);
+        w.push_back(n.weighed_deg);
       }
     const double medianRatio = quantile(p, 0.5) / quantile(e, 0.5);
     const double p95Ratio = quantile(p, 0.95) / quantile(e, 0.95);
     md += format("| %.0f-%.0f | %zu | ", kTiltBands[b], kTiltBands[b + 1], e.size()) + cell(quantile(e, 0.5)) +
           " | " + cell(quantile(e, 0.95)) + " | " + cell(quantile(p, 0.5)) + " | " + cell(quantile(p, 0.95)) + " | " +
-          cell(medianRatio, "%.1fx") + " | " + cell(p95Ratio, "%.1fx") + " | " + cell(quantile(raw, 0.5)) + " |\n";
+          cell(medianRatio, "%.1fx") + " | " + cell(p95Ratio, "%.1fx") + " | " + cell(quantile(raw, 0.5)) + " | " +
+          cell(quantile(w, 0.5)) + " | " + cell(quantile(w, 0.95)) + " |\n";
     if (!e.empty())
       ratios += format("%s%.0f-%.0f deg: %.1fx on the median, %.1fx on the 95th percentile",
                        ratios.empty() ? "" : "; ", kTiltBands[b], kTiltBands[b + 1], medianRatio, p95Ratio);

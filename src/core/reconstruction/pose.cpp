@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 
 namespace imagepro {
@@ -47,6 +48,79 @@ Eigen::Matrix3d imageConicOfCircle(const CameraModel& cam, const Eigen::Matrix3d
   S << 1.0, 0.0, -x0, 0.0, 1.0, -y0, -x0, -y0, x0 * x0 + y0 * y0 - radius * radius;
   const Eigen::Matrix3d Hinv = H.inverse();
   return Hinv.transpose() * S * Hinv;
+}
+
+// Rotation whose third column is n (the first any unit vector normal to it).
+Eigen::Matrix3d frameAboutNormal(const Eigen::Vector3d& n) {
+  Eigen::Matrix3d R;
+  R.col(2) = n;
+  R.col(0) = n.unitOrthogonal();
+  R.col(1) = n.cross(R.col(0));
+  return R;
+}
+
+double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+// Radians per pixel by which the rim's normal turns when the ellipse's axes move a
+// hundredth of a pixel apart or together (the larger of the two: head-on the normal goes
+// with the square root of the axes' difference, so growing it turns the normal most).
+double rimNormalSensitivity(const CameraModel& cam, const Conic& conic, double radius_mm,
+                            const Eigen::Vector3d& normal) {
+  constexpr double kShiftPx = 0.01;
+  Ellipse e;
+  if (!ellipseFromConic(conic, e)) return NAN;
+  double largest = NAN;
+  for (const double sign : {1.0, -1.0}) {
+    Ellipse moved = e;
+    moved.a += sign * 0.5 * kShiftPx;
+    moved.b -= sign * 0.5 * kShiftPx;
+    if (!(moved.a > moved.b)) continue;  // already nearer a circle than the shift
+    std::array<CircleCandidate, 2> cands;
+    if (!ok(circleCandidates(cam, conicFromEllipse(moved), radius_mm, cands))) continue;
+    const double turn =
+        std::min(angleBetween(cands[0].normal, normal), angleBetween(cands[1].normal, normal));
+    largest = std::isnan(largest) ? turn : std::max(largest, turn);
+  }
+  return largest / kShiftPx;
+}
+
+// The rim's normal averaged with the centre spot's polar line, each weighed by the inverse
+// square of its sensitivity to a pixel of error. The same error is assumed on the rim's
+// axes and on the centre spot's image: of the factors tried on grey frames (0.5, 0.7, 1, 2
+// for the spot's against the rim's) 1 gave the smallest errors overall (docs/reconstruction.md).
+// Any failure keeps the rim's normal.
+Eigen::Vector3d weighedNormal(const CameraModel& cam, const TargetGeometry& target,
+                              const Conic& conic, const CircleCandidate& rim,
+                              const Eigen::Vector2d& centreSpotPx) {
+  // The centre spot's centroid is the centre of its image conic, off the image of the disk's
+  // centre by perspective; the offset depends on the normal and the centre only.
+  Eigen::Vector2d centreImage = centreSpotPx;
+  Eigen::Vector2d spotImageCentre;
+  if (target.spot_radius_mm > 0.0 &&
+      conicMatrixCentre(imageConicOfCircle(cam, frameAboutNormal(rim.normal), rim.centre, 0.0,
+                                           0.0, target.spot_radius_mm),
+                        spotImageCentre))
+    centreImage -= spotImageCentre - projectIdeal(cam, rim.centre);
+
+  constexpr double kShiftPx = 0.01;
+  Eigen::Vector3d polar, alongU, alongV;
+  if (!ok(normalFromPolarLine(cam, conic, centreImage, polar)) ||
+      !ok(normalFromPolarLine(cam, conic, centreImage + Eigen::Vector2d(kShiftPx, 0.0), alongU)) ||
+      !ok(normalFromPolarLine(cam, conic, centreImage + Eigen::Vector2d(0.0, kShiftPx), alongV)))
+    return rim.normal;
+  if (!(polar.dot(rim.normal) > 0.0)) return rim.normal;
+  const double polarSensitivity = std::hypot(angleBetween(alongU, polar), angleBetween(alongV, polar)) /
+                                  (std::sqrt(2.0) * kShiftPx);
+  const double rimSensitivity = rimNormalSensitivity(cam, conic, target.radius_mm, rim.normal);
+  if (!(polarSensitivity > 0.0) || !(rimSensitivity > 0.0) || !std::isfinite(polarSensitivity) ||
+      !std::isfinite(rimSensitivity))
+    return rim.normal;
+  const double rimWeight = 1.0 / (rimSensitivity * rimSensitivity);
+  const double polarWeight = 1.0 / (polarSensitivity * polarSensitivity);
+  const Eigen::Vector3d n = rimWeight * rim.normal + polarWeight * polar;
+  return n.allFinite() && n.norm() > 0.0 ? Eigen::Vector3d(n.normalized()) : rim.normal;
 }
 
 }  // namespace
@@ -116,7 +190,7 @@ Status circleCandidates(const CameraModel& cam, const Conic& undistortedConic, d
 
 Status poseFromEllipse(const CameraModel& cam, const TargetGeometry& target,
                        const Conic& undistortedConic, const Eigen::Vector2d& centreSpotPx,
-                       const Eigen::Vector2d& offsetSpotPx, Pose& out) {
+                       const Eigen::Vector2d& offsetSpotPx, Pose& out, bool weighCentreSpot) {
   if (!undistortedConic.allFinite()) return Status::SingularConic;
   if (!centreSpotPx.allFinite() || !offsetSpotPx.allFinite()) return Status::SpotsNotFound;
   std::array<CircleCandidate, 2> cands;
@@ -135,7 +209,8 @@ Status poseFromEllipse(const CameraModel& cam, const TargetGeometry& target,
   const double e0 = (projectIdeal(cam, cands[0].centre) - centreSpotPx).squaredNorm();
   const double e1 = (projectIdeal(cam, cands[1].centre) - centreSpotPx).squaredNorm();
   const CircleCandidate& chosen = e0 <= e1 ? cands[0] : cands[1];
-  const Eigen::Vector3d& n = chosen.normal;
+  const Eigen::Vector3d n =
+      weighCentreSpot ? weighedNormal(cam, target, undistortedConic, chosen, centreSpotPx) : chosen.normal;
   const Eigen::Vector3d& T = chosen.centre;
   if (n.dot(T.normalized()) < std::cos(kMaxViewAngleDeg * M_PI / 180.0))
     return Status::NormalFacingAway;

@@ -38,19 +38,24 @@ Status circleCandidates(const CameraModel& cam, const Conic& undistortedConic, d
                         std::array<CircleCandidate, 2>& out);
 
 // The target's pose from its undistorted rim ellipse and the undistorted centroids of the
-// centre and offset spots' images.
+// centre and offset spots' images. The plane's normal is the cone's eigen-structure's; with
+// `weighCentreSpot` it is averaged with the centre spot's polar line (normalFromPolarLine,
+// the spot's perspective offset removed), each weighed by the inverse square of how far a
+// shift of a hundredth of a pixel (in the rim's axes, in the spot's image) turns it. Head-on,
+// where the rim's ellipse is nearly a circle, the polar line then takes over.
 // Errors: SingularConic / NotAnEllipse (conic), CentreSpotOutsideEllipse, NormalFacingAway
 // (the target plane would be seen edge-on or from behind, or the offset spot's ray meets it
 // behind the camera), SpotsNotFound (the offset spot is not where the target's geometry
 // puts it relative to the centre).
 Status poseFromEllipse(const CameraModel& cam, const TargetGeometry& target,
                        const Conic& undistortedConic, const Eigen::Vector2d& centreSpotPx,
-                       const Eigen::Vector2d& offsetSpotPx, Pose& out);
+                       const Eigen::Vector2d& offsetSpotPx, Pose& out,
+                       bool weighCentreSpot = true);
 
-// For comparison only: the plane normal from the polar line of the centre spot's image with
-// respect to the conic (the plane's vanishing line). Exact in theory, but it depends on one
-// point and on the conic's shape far more than the eigen-structure does (see docs/accuracy.md).
-// Unit, pointing away from the camera.
+// The plane normal from the polar line of the centre spot's image with respect to the conic
+// (the plane's vanishing line). Exact in theory for the image of the disk's centre; alone it
+// depends on one point and, beyond about 10 deg of tilt, is far more sensitive to noise than
+// the eigen-structure (docs/accuracy.md). Unit, pointing away from the camera.
 Status normalFromPolarLine(const CameraModel& cam, const Conic& undistortedConic,
                            const Eigen::Vector2d& centreSpotPx, Eigen::Vector3d& normal);
 

@@ -73,7 +73,8 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
   out.ellipse = fit.ellipse;
 
   const Status poseStatus = poseFromEllipse(config.camera, config.target, out.conic,
-                                            out.centre_spot_ideal, out.offset_spot_ideal, out.pose);
+                                            out.centre_spot_ideal, out.offset_spot_ideal, out.pose,
+                                            config.options.centre_spot_normal);
   if (!ok(poseStatus)) return fail(out.steps.pose, poseStatus);
   out.steps.pose = Status::Ok;
   out.status = Status::Ok;

@@ -114,6 +114,9 @@ struct ReconstructionOptions {
   bool distortion_correction = true;
   bool exact_undistortion = false;  // Newton inverse instead of the Taylor inverse (eqs. 4.18-4.19)
   ContourMode contour_mode = ContourMode::SubPixel;  // most accurate by far: docs/accuracy.md
+  // Weigh the centre spot's polar line into the plane's normal: near head-on the rim alone
+  // fixes the normal poorly (docs/reconstruction.md, docs/accuracy.md).
+  bool centre_spot_normal = true;
   int crop_margin_px = 4;
 };
 

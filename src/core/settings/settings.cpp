@@ -134,6 +134,7 @@ void visitSettings(Visitor& v, Settings& s) {
       v.field("distortion_correction", p.reconstruction.distortion_correction);
       v.field("exact_undistortion", p.reconstruction.exact_undistortion);
       v.field("contour_mode", p.reconstruction.contour_mode);
+      v.field("centre_spot_normal", p.reconstruction.centre_spot_normal);
       v.field("crop_margin_px", p.reconstruction.crop_margin_px, 0, 1000);
     });
     v.object("tracking", [&] {
