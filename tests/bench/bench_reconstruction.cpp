@@ -86,11 +86,12 @@ void BM_PoseFromEllipse(benchmark::State& state) {
   Pose pose;
   for (auto _ : state) {
     poseFromEllipse(scene.settings.camera, scene.settings.target, result.conic, result.centre_spot_ideal,
-                    result.offset_spot_ideal, pose);
+                    result.offset_spot_ideal, pose, state.range(0) != 0);
     benchmark::DoNotOptimize(pose);
   }
 }
-BENCHMARK(BM_PoseFromEllipse)->Unit(benchmark::kMicrosecond);
+// centre_spot:0 takes the normal from the rim alone, 1 weighs the centre spot in (the default).
+BENCHMARK(BM_PoseFromEllipse)->ArgNames({"centre_spot"})->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 void BM_UndistortPoint(benchmark::State& state) {
   CameraModel cam;
