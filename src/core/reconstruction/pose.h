@@ -40,9 +40,9 @@ Status circleCandidates(const CameraModel& cam, const Conic& undistortedConic, d
 // The target's pose from its undistorted rim ellipse and the undistorted centroids of the
 // centre and offset spots' images. The plane's normal is the cone's eigen-structure's; with
 // `weighCentreSpot` it is averaged with the centre spot's polar line (normalFromPolarLine,
-// the spot's perspective offset removed), each weighed by the inverse square of how far a
-// shift of a hundredth of a pixel (in the rim's axes, in the spot's image) turns it. Head-on,
-// where the rim's ellipse is nearly a circle, the polar line then takes over.
+// the spot's perspective offset removed), each weighed by the inverse square of how far its
+// expected pixel error (in the rim's axes, in the spot's image) turns it. Head-on, where the
+// rim's ellipse is nearly a circle, the polar line then takes over.
 // Errors: SingularConic / NotAnEllipse (conic), CentreSpotOutsideEllipse, NormalFacingAway
 // (the target plane would be seen edge-on or from behind, or the offset spot's ray meets it
 // behind the camera), SpotsNotFound (the offset spot is not where the target's geometry

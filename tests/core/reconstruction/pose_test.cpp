@@ -345,13 +345,13 @@ TEST_F(PoseTest, WeighingTheCentreSpotMendsTheNormalHeadOnAndCostsNothingBeyond)
     std::printf("tilt %.0f-%.0f deg: normal error rim only / weighed: median %.3f / %.3f, p95 %.3f / %.3f\n", tiltLo,
                 tiltHi, quantile(rimOnly, 0.5), quantile(weighed, 0.5), quantile(rimOnly, 0.95),
                 quantile(weighed, 0.95));
-    // Measured 0.86x on the median and 0.70x on the 95th percentile head-on, 0.99x and 0.98x
-    // beyond 20 deg. (The weights assume the same error on the rim's axes as on the spot, as
-    // measured on grey frames; here the rim's axes scatter by about 0.03 px, so the gain is
-    // smaller than the frames' halving of the 95th percentile.)
+    // Measured 0.91x on the median and 0.78x on the 95th percentile head-on, 0.98x on both
+    // beyond 20 deg. (The weights take the spot's error as 1.3 times the rim axes', as suits
+    // grey frames; here the rim's axes scatter by about 0.03 px, three times the spot's, so
+    // the gain is smaller than the frames' halving of the 95th percentile.)
     if (tiltHi <= 3.0) {
-      EXPECT_LT(quantile(weighed, 0.5), 0.92 * quantile(rimOnly, 0.5));
-      EXPECT_LT(quantile(weighed, 0.95), 0.8 * quantile(rimOnly, 0.95));
+      EXPECT_LT(quantile(weighed, 0.5), 0.95 * quantile(rimOnly, 0.5));
+      EXPECT_LT(quantile(weighed, 0.95), 0.85 * quantile(rimOnly, 0.95));
     } else {
       EXPECT_LT(quantile(weighed, 0.5), 1.05 * quantile(rimOnly, 0.5));
       EXPECT_LT(quantile(weighed, 0.95), 1.05 * quantile(rimOnly, 0.95));
