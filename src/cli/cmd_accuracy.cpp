@@ -250,12 +250,10 @@ void runCondition(const Settings& settings, Condition& c, int frames, std::uint6
           // The centre spot's perspective bias at the estimated pose: the centre of its
           // image conic minus the image of its centre (what poseFromEllipse removes from
           // the offset spot).
-          Eigen::Vector2d spotImageCentre;
-          const bool hasCentre = conicMatrixCentre(
-              imageConicOfTargetCircle(s.camera, est, 0.0, 0.0, s.target.spot_radius_mm), spotImageCentre);
-          const Eigen::Vector2d bias =
-              hasCentre ? Eigen::Vector2d(spotImageCentre - projectIdeal(s.camera, translation(est)))
-                        : Eigen::Vector2d::Zero();
+          Eigen::Vector2d bias;
+          if (!spotCentroidOffset(s.camera, rotationMatrix(est), translation(est), 0.0, 0.0,
+                                  s.target.spot_radius_mm, bias))
+            bias.setZero();
           no.polar_deg =
               ok(normalFromPolarLine(s.camera, result.conic, result.centre_spot_ideal - bias, polar))
                   ? normalErrorDeg(polar, Rtrue.col(2))

@@ -87,8 +87,9 @@ double rimNormalSensitivity(const CameraModel& cam, const Conic& conic, double r
 }
 
 // The centre spot's image is taken to err 1.3 times as much as the rim's axes: of the
-// factors tried on three seeds of the accuracy study (0.5-2), 1.3 bettered the rim alone in
-// both the median and the 95th percentile within 15 deg of head-on (docs/reconstruction.md).
+// factors tried in the accuracy study (0.7, 1, 1.3, 1.6), 1.3 bettered the rim alone in both
+// the median and the 95th percentile within 15 deg of head-on on seeds 1-3
+// (docs/reconstruction.md).
 constexpr double kSpotToRimErrorRatio = 1.3;
 
 // The rim's normal averaged with the centre spot's polar line, each weighed by the inverse
@@ -97,15 +98,14 @@ constexpr double kSpotToRimErrorRatio = 1.3;
 Eigen::Vector3d weighedNormal(const CameraModel& cam, const TargetGeometry& target,
                               const Conic& conic, const CircleCandidate& rim,
                               const Eigen::Vector2d& centreSpotPx) {
-  // The centre spot's centroid is the centre of its image conic, off the image of the disk's
-  // centre by perspective; the offset depends on the normal and the centre only.
+  // The centre spot's centroid is off the image of the disk's centre by perspective; the
+  // offset depends on the normal and the centre only, not on Rz.
   Eigen::Vector2d centreImage = centreSpotPx;
-  Eigen::Vector2d spotImageCentre;
+  Eigen::Vector2d offset;
   if (target.spot_radius_mm > 0.0 &&
-      conicMatrixCentre(imageConicOfCircle(cam, frameAboutNormal(rim.normal), rim.centre, 0.0,
-                                           0.0, target.spot_radius_mm),
-                        spotImageCentre))
-    centreImage -= spotImageCentre - projectIdeal(cam, rim.centre);
+      spotCentroidOffset(cam, frameAboutNormal(rim.normal), rim.centre, 0.0, 0.0,
+                         target.spot_radius_mm, offset))
+    centreImage -= offset;
 
   constexpr double kShiftPx = 0.01;
   Eigen::Vector3d polar, alongU, alongV;
@@ -128,6 +128,15 @@ Eigen::Vector3d weighedNormal(const CameraModel& cam, const TargetGeometry& targ
 }
 
 }  // namespace
+
+bool spotCentroidOffset(const CameraModel& cam, const Eigen::Matrix3d& R, const Eigen::Vector3d& T,
+                        double x_mm, double y_mm, double radius_mm, Eigen::Vector2d& offset) {
+  Eigen::Vector2d conicCentre;
+  if (!conicMatrixCentre(imageConicOfCircle(cam, R, T, x_mm, y_mm, radius_mm), conicCentre))
+    return false;
+  offset = conicCentre - projectIdeal(cam, R * Eigen::Vector3d(x_mm, y_mm, 0.0) + T);
+  return true;
+}
 
 bool conicMatrixCentre(const Eigen::Matrix3d& M, Eigen::Vector2d& centre) {
   const Eigen::Matrix2d A = M.topLeftCorner<2, 2>();
@@ -250,12 +259,8 @@ Status poseFromEllipse(const CameraModel& cam, const TargetGeometry& target,
   // of its centre, computed from the pose so far, then take the axis again. The offset
   // depends on the axis only weakly, so a second pass leaves a residual far below 1e-6 deg.
   for (int pass = 0; pass < 2 && target.spot_radius_mm > 0.0; ++pass) {
-    const Eigen::Matrix3d spotConic =
-        imageConicOfCircle(cam, R, T, target.spot_offset_mm, 0.0, target.spot_radius_mm);
-    Eigen::Vector2d spotImageCentre;
-    if (!conicMatrixCentre(spotConic, spotImageCentre)) break;
-    const Eigen::Vector2d bias =
-        spotImageCentre - projectIdeal(cam, R.col(0) * target.spot_offset_mm + T);
+    Eigen::Vector2d bias;
+    if (!spotCentroidOffset(cam, R, T, target.spot_offset_mm, 0.0, target.spot_radius_mm, bias)) break;
     if (!bias.allFinite() || bias.norm() > 0.5 * target.spot_radius_mm * cam.fu() / T.z()) break;
     if (const Status s = xAxisThrough(offsetSpotPx - bias, xAxis); !ok(s)) return s;
     R = rotationFrom(xAxis);

@@ -63,6 +63,11 @@ Status normalFromPolarLine(const CameraModel& cam, const Conic& undistortedConic
 // in target coordinates (mm), seen at `pose`. Used for the spot correction and by tests.
 Eigen::Matrix3d imageConicOfTargetCircle(const CameraModel& cam, const Pose& pose, double x_mm,
                                          double y_mm, double radius_mm);
+// How far perspective moves the centroid of a spot's image (the centre of its image conic)
+// from the image of the spot's centre: the spot of radius_mm at (x_mm, y_mm) on the target
+// plane placed by R, T. False when the image conic has no centre.
+bool spotCentroidOffset(const CameraModel& cam, const Eigen::Matrix3d& R, const Eigen::Vector3d& T,
+                        double x_mm, double y_mm, double radius_mm, Eigen::Vector2d& offset);
 // Centre of a (central) conic given as a 3x3 symmetric matrix; false when it has none.
 bool conicMatrixCentre(const Eigen::Matrix3d& M, Eigen::Vector2d& centre);
 
