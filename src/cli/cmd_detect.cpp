@@ -9,11 +9,8 @@
 #include "cli/command.h"
 #include "cli/image_inputs.h"
 #include "core/common/pose_csv.h"
-#include "core/connectivity/connectivity.h"
-#include "core/edges/edges.h"
 #include "core/ellipse/detect.h"
-#include "core/segmentation/histogram.h"
-#include "core/segmentation/threshold.h"
+#include "core/pipeline/stage_chain.h"
 #include "core/settings/enum_names.h"
 
 namespace imagepro::cli {
@@ -21,28 +18,20 @@ namespace {
 
 // Everything one image goes through, reused from image to image.
 struct Stage {
-  cv::Mat grey, binary;
-  Histogram hist;
-  EdgeList edges;
-  EdgeWorkspace edge_ws;
-  Paths paths;
-  ConnectivityWorkspace connect_ws;
-  EllipseWorkspace ellipse_ws;
-  std::vector<TargetDetection> targets, ellipses;
+  cv::Mat grey;
+  StageChain chain;
+  FrameResult result;
+  std::vector<TargetDetection> ellipses;
 };
 
+// The stage chain up to the ellipse stage, on the whole image.
 Status detectImage(const Settings& s, const std::string& file, Stage& st, std::string& problem) {
-  Status status = readGreyImageQuietly(file, st.grey, problem);
+  st.chain.detections.clear();
+  st.chain.paths.clear();
+  const Status status = readGreyImageQuietly(file, st.grey, problem);
   if (!ok(status)) return status;
-  const PipelineOptions& p = s.pipeline;
-  computeHistogram(st.grey, st.hist);
-  int t = 0;
-  if (status = computeThreshold(p.threshold, st.hist, t); !ok(status)) return status;
-  binarize(st.grey, t, st.binary);
-  if (status = detectEdges(p.edge_method, st.binary, st.edges, st.edge_ws); !ok(status)) return status;
-  if (status = connectPaths(p.connectivity, st.edges, st.binary.size(), st.paths, st.connect_ws); !ok(status))
-    return status;
-  return detectTarget(p.ellipse, s.target, st.paths, st.binary.size(), st.ellipse_ws, st.targets);
+  runStageChain(s, st.grey, {}, TargetsToReconstruct::Best, st.chain, st.result);
+  return st.result.status;
 }
 
 double fitError(const EllipseOptions& o, const TargetDetection& d) {
@@ -54,7 +43,7 @@ double fitError(const EllipseOptions& o, const TargetDetection& d) {
 // the centre (thesis fig. 2.26).
 void drawOverlay(const Settings& s, Stage& st, Status status, cv::Mat& out) {
   cv::cvtColor(st.grey, out, cv::COLOR_GRAY2BGR);
-  if (st.paths.pathCount() > 0) detectEllipses(s.pipeline.ellipse, st.paths, st.grey.size(), st.ellipse_ws, st.ellipses);
+  if (st.chain.paths.pathCount() > 0) detectEllipses(s.pipeline.ellipse, st.chain.paths, st.grey.size(), st.chain.ellipse_ws, st.ellipses);
   else st.ellipses.clear();
   auto draw = [&](const Ellipse& e, const cv::Scalar& colour, int thickness) {
     cv::ellipse(out, cv::RotatedRect(cv::Point2f(float(e.cx), float(e.cy)), cv::Size2f(float(2 * e.a), float(2 * e.b)),
@@ -63,10 +52,10 @@ void drawOverlay(const Settings& s, Stage& st, Status status, cv::Mat& out) {
   };
   for (const auto& e : st.ellipses) draw(e.ellipse, cv::Scalar(0, 220, 220), 1);
   if (status != Status::Ok && status != Status::AmbiguousTarget) return;
-  for (const auto& d : st.targets) {
+  for (const auto& d : st.chain.detections) {
     for (std::size_t spot : d.spot_paths) {
       if (spot == kNoPath) continue;
-      for (const auto& p : st.paths.path(spot)) out.at<cv::Vec3b>(p.y, p.x) = cv::Vec3b(255, 80, 0);
+      for (const auto& p : st.chain.paths.path(spot)) out.at<cv::Vec3b>(p.y, p.x) = cv::Vec3b(255, 80, 0);
     }
     draw(d.ellipse, status == Status::Ok ? cv::Scalar(0, 200, 0) : cv::Scalar(0, 0, 255), 2);
     char label[32];
@@ -82,6 +71,7 @@ int run(const Args& args) {
   if (format != "text" && format != "csv") throw UsageError("--format: \"" + format + "\" is not text or csv");
   if (args.positionals().empty()) throw UsageError("no images given");
   Settings settings = loadConfig(args);
+  settings.pipeline.level = ApplicationLevel::Ellipse;
   if (const auto name = args.value("method")) {
     const auto method = parseEnum<EllipseMethod>(*name);
     if (!method) throw UsageError("--method: \"" + *name + "\" is not one of " + enumChoices<EllipseMethod>());
@@ -110,11 +100,16 @@ int run(const Args& args) {
     const Status status = ok(input.status) ? detectImage(settings, file, st, problem) : input.status;
     const std::string name(statusName(status));
     const bool found = status == Status::Ok || status == Status::AmbiguousTarget;
+    if (st.grey.empty()) {  // not read: the reason on stderr too, as the other commands give it
+      std::fflush(stdout);
+      std::fprintf(stderr, "imagepro-cli detect: %s: %s\n", name.c_str(),
+                   problem.empty() ? std::string(statusMessage(status)).c_str() : problem.c_str());
+    }
     if (!found) {
       if (csv) std::printf("%s,%s,,,,,,,%s\n", csvField(file).c_str(), name.c_str(), method.c_str());
       else std::printf("%s: %s (%s)\n", file.c_str(), name.c_str(), problem.empty() ? std::string(statusMessage(status)).c_str() : problem.c_str());
     }
-    for (const auto& d : found ? st.targets : std::vector<TargetDetection>{}) {
+    for (const auto& d : found ? st.chain.detections : std::vector<TargetDetection>{}) {
       const Ellipse& e = d.ellipse;
       if (csv) {
         std::printf("%s,%s,%.3f,%.3f,%.3f,%.3f,%.2f,%.6g,%s\n", csvField(file).c_str(), name.c_str(), e.cx, e.cy, e.a,
@@ -164,7 +159,8 @@ const CommandRegistration kRegistration{{
     "towards +v; fit_error: E_rel (eq. 2.42) or the mean Sampson distance in pixels,\n"
     "as the settings' ellipse.accept_rule. An image that cannot be read (missing,\n"
     "corrupt, a folder or list without images) is reported in its row (FileNotFound,\n"
-    "FileUnreadable) and the others are still processed; the exit status is 0 unless\n"
+    "FileUnreadable) and named with the reason on stderr, and the others are still\n"
+    "processed; the exit status is 0 unless\n"
     "the command line, the settings or --overlay is wrong.",
     {},
     run,

@@ -11,10 +11,7 @@
 #include "cli/command.h"
 #include "cli/image_inputs.h"
 #include "core/common/pose_csv.h"
-#include "core/connectivity/connectivity.h"
-#include "core/edges/edges.h"
-#include "core/segmentation/histogram.h"
-#include "core/segmentation/threshold.h"
+#include "core/pipeline/stage_chain.h"
 #include "core/settings/enum_names.h"
 
 namespace imagepro::cli {
@@ -63,11 +60,11 @@ struct Row {
 int run(const Args& args) {
   args.rejectUnknown({"out", "method", "connectivity"});
   if (args.positionals().empty()) throw UsageError("no images given");
-  const Settings settings = loadConfig(args);
-  const EdgeMethod edgeMethod = chosenEnum(args, "method", settings.pipeline.edge_method);
-  const ConnectivityMethod connectivity = chosenEnum(args, "connectivity", settings.pipeline.connectivity);
-  const ThresholdOptions& thresholdOptions = settings.pipeline.threshold;
-  if (thresholdOptions.method == ThresholdMethod::None)
+  Settings settings = loadConfig(args);
+  settings.pipeline.edge_method = chosenEnum(args, "method", settings.pipeline.edge_method);
+  settings.pipeline.connectivity = chosenEnum(args, "connectivity", settings.pipeline.connectivity);
+  settings.pipeline.level = ApplicationLevel::Connectivity;
+  if (settings.pipeline.threshold.method == ThresholdMethod::None)
     throw InputError("the settings' threshold method \"none\" names no threshold");
 
   std::optional<std::filesystem::path> outDir;
@@ -79,38 +76,32 @@ int run(const Args& args) {
   }
 
   std::printf("frame,status,threshold,edge_pixels,paths,longest_path\n");
-  cv::Mat grey, binary, edgeImage, pathImage;
-  Histogram hist;
-  EdgeList edges;
-  EdgeWorkspace edgeWs;
-  Paths paths;
-  ConnectivityWorkspace connectivityWs;
+  cv::Mat grey, edgeImage, pathImage;
+  StageChain chain;
+  FrameResult result;
+  const cv::Mat& binary = chain.binary;
+  const EdgeList& edges = chain.edges;
+  const Paths& paths = chain.paths;
   UniqueNames outNames;
   bool failed = false;
   for (const ImageInput& input : expandImageInputs(args.positionals())) {
     const std::string& file = input.path;
     Row row;
     std::string error = input.error;
-    bool binaryReady = false, edgesReady = false;
+    bool binaryReady = false;
     row.status = ok(input.status) ? readGreyImageQuietly(file, grey, error) : input.status;
     if (!ok(row.status)) {
       failed = true;
       std::fflush(stdout);
       std::fprintf(stderr, "imagepro-cli edges: %s: %s\n", std::string(statusName(row.status)).c_str(), error.c_str());
     } else {
-      computeHistogram(grey, hist);
-      int t = 0;
-      row.status = computeThreshold(thresholdOptions, hist, t);
-      if (ok(row.status)) {
-        row.threshold = std::to_string(t);
-        binarize(grey, t, binary);
-        binaryReady = true;
-        row.status = detectEdges(edgeMethod, binary, edges, edgeWs);
-        edgesReady = true;
-        if (ok(row.status)) row.status = connectPaths(connectivity, edges, binary.size(), paths, connectivityWs);
-        if (!ok(row.status)) paths.clear();
+      runStageChain(settings, grey, {}, TargetsToReconstruct::Best, chain, result);
+      row.status = result.status;
+      binaryReady = stageRan(result, ApplicationLevel::Edges);  // edges run whenever the threshold is found
+      if (binaryReady) {
         std::size_t longest = 0;
         for (std::size_t i = 0; i < paths.pathCount(); ++i) longest = std::max(longest, paths.path(i).size());
+        row.threshold = std::to_string(result.threshold);
         row.edgePixels = std::to_string(edges.size());
         row.paths = std::to_string(paths.pathCount());
         row.longestPath = std::to_string(longest);
@@ -119,14 +110,12 @@ int run(const Args& args) {
     if (outDir && binaryReady) {
       const std::string stem = outNames.take(std::filesystem::path(file).stem().string());
       bool written = writePng(*outDir / (stem + "_binary.png"), binary);
-      if (edgesReady) {
-        edgeImage.create(binary.size(), CV_8UC1);
-        edgeImage.setTo(0);
-        for (const auto& p : edges) edgeImage.at<std::uint8_t>(p.y, p.x) = 255;
-        drawPaths(paths, binary.size(), pathImage);
-        written = writePng(*outDir / (stem + "_edges.png"), edgeImage) && written;
-        written = writePng(*outDir / (stem + "_paths.png"), pathImage) && written;
-      }
+      edgeImage.create(binary.size(), CV_8UC1);
+      edgeImage.setTo(0);
+      for (const auto& p : edges) edgeImage.at<std::uint8_t>(p.y, p.x) = 255;
+      drawPaths(paths, binary.size(), pathImage);
+      written = writePng(*outDir / (stem + "_edges.png"), edgeImage) && written;
+      written = writePng(*outDir / (stem + "_paths.png"), pathImage) && written;
       if (!written) {
         failed = true;
         if (ok(row.status) || row.status == Status::NoEdges) row.status = Status::FileNotWritable;

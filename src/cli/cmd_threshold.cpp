@@ -6,8 +6,7 @@
 #include "cli/command.h"
 #include "cli/image_inputs.h"
 #include "core/common/pose_csv.h"
-#include "core/segmentation/histogram.h"
-#include "core/segmentation/threshold.h"
+#include "core/pipeline/stage_chain.h"
 #include "core/settings/enum_names.h"
 
 namespace imagepro::cli {
@@ -38,12 +37,15 @@ int run(const Args& args) {
   const std::string format = args.valueOr("format", "text");
   if (format != "text" && format != "csv") throw UsageError("--format: \"" + format + "\" is not text or csv");
   if (args.positionals().empty()) throw UsageError("no images given");
-  const ThresholdOptions options = chosenOptions(args, loadConfig(args));
+  Settings settings = loadConfig(args);
+  settings.pipeline.threshold = chosenOptions(args, settings);
+  settings.pipeline.level = ApplicationLevel::Threshold;
 
   const bool csv = format == "csv";
   if (csv) std::printf("image,status,threshold\n");
   cv::Mat grey;
-  Histogram hist;
+  StageChain chain;
+  FrameResult result;
   bool unreadable = false;
   for (const ImageInput& input : expandImageInputs(args.positionals())) {
     int t = 0;
@@ -52,8 +54,9 @@ int run(const Args& args) {
     if (ok(status)) status = readGreyImageQuietly(input.path, grey, problem);
     const bool loaded = ok(status);
     if (loaded) {
-      computeHistogram(grey, hist);
-      status = computeThreshold(options, hist, t);
+      runStageChain(settings, grey, {}, TargetsToReconstruct::Best, chain, result);
+      status = result.status;
+      t = result.threshold;
       problem = statusMessage(status);
     } else {
       unreadable = true;

@@ -507,7 +507,15 @@ TEST_F(CliLibrary, DetectFoldersListsAndOverlays) {
                        (dir / "b").string() + " " + (dir / "list.txt").string() + " " + (dir / "empty").string() +
                        " " + (dir / "truncated.png").string() + " " + (dir / "truncated.pgm").string());
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_TRUE(r.err.empty()) << r.err;  // the decoders' own lines stay out too
+  // Each image that could not be read is named on stderr with its reason, once; the
+  // decoders' own lines stay out.
+  const auto errors = lines(r.err);
+  ASSERT_EQ(errors.size(), 3u) << r.err;
+  EXPECT_EQ(errors[0], "imagepro-cli detect: FileNotFound: " + (dir / "empty").string() + ": no image files in the folder");
+  for (std::size_t i = 1; i < 3; ++i) {
+    EXPECT_EQ(errors[i].rfind("imagepro-cli detect: FileUnreadable: " + dir.string() + "/truncated.", 0), 0u) << errors[i];
+    EXPECT_NE(errors[i].find("not a readable image"), std::string::npos) << errors[i];
+  }
   const auto rows = lines(r.out);
   ASSERT_EQ(rows.size(), 8u) << r.out;
   const std::vector<std::pair<std::string, std::string>> expected = {

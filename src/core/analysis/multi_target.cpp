@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "core/segmentation/threshold.h"
 
 namespace imagepro {
 
@@ -13,42 +12,28 @@ int MultiTargetResult::reconstructed() const {
 
 Status reconstructAllTargets(const Settings& settings, const cv::Mat& grey, MultiTargetWorkspace& ws,
                              MultiTargetResult& out) {
-  const PipelineOptions& o = settings.pipeline;
   out.targets.clear();
-  out.threshold = -1;
-  auto fail = [&](Status s) {
-    out.status = s;
-    return s;
-  };
-  if (grey.empty() || grey.type() != CV_8UC1) return fail(Status::EmptyFrame);
-
-  computeHistogram(grey, ws.histogram);
-  Status s = computeThreshold(o.threshold, ws.histogram, out.threshold);
-  if (!ok(s)) return fail(s);
-  binarize(grey, out.threshold, ws.binary);
-  s = detectEdges(o.edge_method, ws.binary, ws.edges, ws.edge_ws);
-  if (!ok(s)) return fail(s);
-  s = connectPaths(o.connectivity, ws.edges, grey.size(), ws.paths, ws.connectivity_ws);
-  if (!ok(s)) return fail(s);
-
-  EllipseOptions ellipse = o.ellipse;
-  ellipse.report_all_targets = true;
-  s = detectTarget(ellipse, settings.target, ws.paths, grey.size(), ws.ellipse_ws, ws.detections);
-  if (!ok(s)) return fail(s);
-  if (ws.detections.empty()) return fail(Status::NoTarget);
-
-  const ReconstructionConfig config = reconstructionConfig(settings);
-  for (const TargetDetection& d : ws.detections) {
+  // Every stage runs, whatever application level the settings stop at.
+  if (settings.pipeline.level != ApplicationLevel::Reconstruction) {
+    Settings all = settings;
+    all.pipeline.level = ApplicationLevel::Reconstruction;
+    return reconstructAllTargets(all, grey, ws, out);
+  }
+  FrameResult& frame = ws.frame;
+  runStageChain(settings, grey, {}, TargetsToReconstruct::Every, ws.chain, frame);
+  out.status = frame.status;
+  out.threshold = frame.threshold;
+  if (!ok(frame.status)) return frame.status;
+  for (const TargetSummary& target : frame.targets) {
     ReconstructedTarget t;
-    t.ellipse = d.ellipse;
-    t.bbox = d.bbox;
-    t.status = reconstructTarget(config, grey, d.ellipse, out.threshold, ws.reconstruction_ws, ws.reconstruction);
-    if (ok(t.status)) t.pose = ws.reconstruction.pose;
+    t.ellipse = target.ellipse;
+    t.bbox = target.bbox;
+    t.status = target.status;
+    if (target.pose) t.pose = *target.pose;
     out.targets.push_back(t);
   }
   std::sort(out.targets.begin(), out.targets.end(),
             [](const ReconstructedTarget& a, const ReconstructedTarget& b) { return a.ellipse.cx < b.ellipse.cx; });
-  out.status = Status::Ok;
   return Status::Ok;
 }
 

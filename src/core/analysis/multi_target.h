@@ -1,23 +1,19 @@
 #pragma once
 // Every target of one frame, each with its own pose: the measurement of thesis 5.3.1
 // reconstructs the two targets of its object "separately". The frame goes through the
-// pipeline's stages (threshold of the whole frame, edges, connectivity), the ellipse
-// stage reports every target it finds (EllipseOptions::report_all_targets), and each
-// is reconstructed by the reconstruction chain of thesis 5.2.2 on its own crop, with
-// its own re-threshold. No tracking: the whole frame is searched every time.
+// pipeline's stage chain (stage_chain.h) with every target reconstructed: threshold of
+// the whole frame, edges, connectivity, the ellipse stage reporting every target it
+// finds, and each target reconstructed by the chain of thesis 5.2.2 on its own crop,
+// with its own re-threshold. No tracking: the whole frame is searched every time.
 #include <opencv2/core.hpp>
 
 #include <vector>
 
 #include "core/common/geometry.h"
 #include "core/common/status.h"
-#include "core/connectivity/connectivity.h"
-#include "core/connectivity/paths.h"
-#include "core/edges/edge_list.h"
-#include "core/edges/edges.h"
-#include "core/ellipse/detect.h"
-#include "core/reconstruction/reconstruct.h"
-#include "core/segmentation/histogram.h"
+#include "core/ellipse/ellipse.h"
+#include "core/pipeline/frame_result.h"
+#include "core/pipeline/stage_chain.h"
 #include "core/settings/settings.h"
 
 namespace imagepro {
@@ -40,16 +36,8 @@ struct MultiTargetResult {
 
 // Buffers reused from frame to frame: no heap allocation once they have grown.
 struct MultiTargetWorkspace {
-  Histogram histogram{};
-  cv::Mat binary;
-  EdgeList edges;
-  EdgeWorkspace edge_ws;
-  Paths paths;
-  ConnectivityWorkspace connectivity_ws;
-  EllipseWorkspace ellipse_ws;
-  std::vector<TargetDetection> detections;
-  ReconstructionWorkspace reconstruction_ws;
-  ReconstructionResult reconstruction;
+  StageChain chain;
+  FrameResult frame;
 };
 
 // Reconstructs every target of `grey` with the settings' methods (report_all_targets is

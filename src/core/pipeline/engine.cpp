@@ -2,11 +2,7 @@
 
 #include <chrono>
 
-#include "core/connectivity/connectivity.h"
-#include "core/edges/edges.h"
-#include "core/pipeline/target_stage.h"
-#include "core/segmentation/histogram.h"
-#include "core/segmentation/threshold.h"
+#include "core/pipeline/stage_chain.h"
 #include "core/tracking/tracker.h"
 
 namespace imagepro {
@@ -19,22 +15,13 @@ double microsecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::micro>(Clock::now() - start).count();
 }
 
-bool reached(ApplicationLevel level, ApplicationLevel stage) {
-  return static_cast<int>(level) >= static_cast<int>(stage);
-}
-
 }  // namespace
 
 struct Engine::Impl {
   Settings settings;
   RegionTracker tracker;
   Frame frame;
-  cv::Mat binary;
-  EdgeList edges;
-  EdgeWorkspace edge_ws;
-  Paths paths;
-  ConnectivityWorkspace connectivity_ws;
-  TargetStage target_stage;
+  StageChain chain;
   double last_track_time = -1.0;
 
   void run(FrameResult& out);
@@ -48,9 +35,9 @@ void Engine::setSettings(const Settings& settings) { impl_->settings = settings;
 const Settings& Engine::settings() const { return impl_->settings; }
 void Engine::resetTracking() { impl_->tracker.reset(); }
 const Frame& Engine::lastFrame() const { return impl_->frame; }
-const cv::Mat& Engine::binaryImage() const { return impl_->binary; }
-const EdgeList& Engine::edges() const { return impl_->edges; }
-const Paths& Engine::paths() const { return impl_->paths; }
+const cv::Mat& Engine::binaryImage() const { return impl_->chain.binary; }
+const EdgeList& Engine::edges() const { return impl_->chain.edges; }
+const Paths& Engine::paths() const { return impl_->chain.paths; }
 
 void Engine::process(const Frame& frame, FrameResult& out) {
   // Shallow copy: the image buffer is shared, not copied.
@@ -82,96 +69,27 @@ void Engine::Impl::run(FrameResult& out) {
   out.timestamp_s = frame.timestamp_s;
   out.name = frame.name;
   out.truth = frame.truth;
-  out.status = Status::Ok;
-  out.reached = ApplicationLevel::Source;
-  out.image_size = frame.image.size();
-  out.threshold = -1;
-  out.edge_pixels = 0;
-  out.paths = 0;
-  out.targets.clear();
-  out.pose.reset();
-  out.detected_region = {};
-  out.contour_points.clear();
   out.times = {};
-  edges.clear();
-  paths.clear();
 
   const cv::Mat& grey = frame.image;
-  if (grey.empty() || grey.type() != CV_8UC1) {
-    out.status = Status::EmptyFrame;
-    out.search_region = {};
-    tracker.observeMiss();
-    return;
+  cv::Rect region;  // empty: the whole frame
+  if (!grey.empty() && grey.type() == CV_8UC1) {
+    // Tracking time: the frame's timestamp, or its index for sources without a clock.
+    const double t = frame.timestamp_s > last_track_time ? frame.timestamp_s : static_cast<double>(frame.index);
+    last_track_time = t;
+    // Only a stream is tracked (thesis appendix A: camera and virtual input). Image files
+    // carry their name and are separate stills: the last one says nothing about the next.
+    const bool stream = frame.name.empty();
+    if (!stream) tracker.reset();
+    if (stream) region = tracker.estimate(o.tracking, settings.camera, settings.target, t, grey.size()).value_or(region);
   }
-  const cv::Rect whole(0, 0, grey.cols, grey.rows);
+  runStageChain(settings, grey, region, TargetsToReconstruct::Best, chain, out);
 
-  // Tracking time: the frame's timestamp, or its index for sources without a clock.
-  const double t = frame.timestamp_s > last_track_time ? frame.timestamp_s : static_cast<double>(frame.index);
-  last_track_time = t;
-
-  auto start = Clock::now();
-  // Only a stream is tracked (thesis appendix A: camera and virtual input). Image files
-  // carry their name and are separate stills: the last one says nothing about the next.
-  const bool stream = frame.name.empty();
-  if (!stream) tracker.reset();
-  out.search_region =
-      stream ? tracker.estimate(o.tracking, settings.camera, settings.target, t, grey.size()).value_or(whole) : whole;
-  // The searched region is a view into the frame, not a copy: it is counted here and
-  // binarized into the engine's own buffer (never the frame's: another view may share it).
-  const cv::Mat searched = grey(out.search_region & whole);
-  computeHistogram(searched, out.histogram);
-  out.times[Stage::Crop] = microsecondsSince(start);
-  if (!reached(o.level, ApplicationLevel::Threshold)) return;
-
-  start = Clock::now();
-  out.reached = ApplicationLevel::Threshold;
-  out.status = computeThreshold(o.threshold, out.histogram, out.threshold);
-  if (ok(out.status)) binarize(searched, out.threshold, binary);
-  out.times[Stage::Threshold] = microsecondsSince(start);
-  if (!ok(out.status)) {
-    tracker.observeMiss();
-    return;
-  }
-  if (!reached(o.level, ApplicationLevel::Edges)) return;
-
-  start = Clock::now();
-  out.reached = ApplicationLevel::Edges;
-  out.status = detectEdges(o.edge_method, binary, edges, edge_ws);
-  // Edges of the searched region in full-image coordinates, so every later stage
-  // and the display work in one frame of reference.
-  const auto dx = static_cast<std::int16_t>(out.search_region.x);
-  const auto dy = static_cast<std::int16_t>(out.search_region.y);
-  if (dx != 0 || dy != 0)
-    for (EdgePixel& p : edges) {
-      p.x = static_cast<std::int16_t>(p.x + dx);
-      p.y = static_cast<std::int16_t>(p.y + dy);
-    }
-  out.edge_pixels = edges.size();
-  out.times[Stage::Edges] = microsecondsSince(start);
-  if (!ok(out.status)) {
-    tracker.observeMiss();
-    return;
-  }
-  if (!reached(o.level, ApplicationLevel::Connectivity)) return;
-
-  start = Clock::now();
-  out.reached = ApplicationLevel::Connectivity;
-  out.status = connectPaths(o.connectivity, edges, grey.size(), paths, connectivity_ws);
-  out.paths = paths.pathCount();
-  out.times[Stage::Connectivity] = microsecondsSince(start);
-  if (!ok(out.status)) {
-    tracker.observeMiss();
-    return;
-  }
-  if (!reached(o.level, ApplicationLevel::Ellipse)) return;
-
-  // Ellipse detection and reconstruction (their own file: the target stage).
-  target_stage.run(settings, grey, paths, out);
-
-  start = Clock::now();
-  if (ok(out.status) && !out.detected_region.empty()) {
-    tracker.observe(t, cv::Rect2d(out.detected_region), out.pose);
-  } else {
+  // The tracker learns from every frame whose ellipse stage ran, and from every failure.
+  const auto start = Clock::now();
+  if (ok(out.status) && stageRan(out, ApplicationLevel::Ellipse) && !out.detected_region.empty()) {
+    tracker.observe(last_track_time, cv::Rect2d(out.detected_region), out.pose);
+  } else if (!ok(out.status) || stageRan(out, ApplicationLevel::Ellipse)) {
     tracker.observeMiss();
   }
   out.times[Stage::Tracking] = microsecondsSince(start);

@@ -37,6 +37,9 @@ struct TargetSummary {
   double sampson_px = 0.0;      // mean Sampson distance of the path to the ellipse
   double bennett_score = 0.0, bennett_quality = 0.0, bennett_symmetry = 0.0;
   cv::Rect bbox;
+  // When every target of the frame is reconstructed (stage_chain.h): its own outcome.
+  Status status = Status::Stopped;
+  std::optional<Pose> pose;
 };
 
 struct FrameResult {

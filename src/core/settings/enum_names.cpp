@@ -42,6 +42,9 @@ constexpr EnumEntry<DisplayOptions::Target> kTargetDisplay[] = {
     {DisplayOptions::Target::Path, "path"},
     {DisplayOptions::Target::Source, "source"},
     {DisplayOptions::Target::Binary, "binary"}};
+constexpr EnumEntry<Binarization> kBinarization[] = {{Binarization::Global, "global"},
+                                                     {Binarization::Local, "local"},
+                                                     {Binarization::GlobalThenLocal, "global-then-local"}};
 constexpr EnumEntry<RenderMode> kRender[] = {{RenderMode::Binary, "binary"}, {RenderMode::Grey, "grey"}};
 constexpr EnumEntry<MotionKind> kMotion[] = {{MotionKind::Static, "static"},
                                              {MotionKind::Sinusoid, "sinusoid"},
@@ -52,6 +55,7 @@ constexpr EnumEntry<PoseAxis> kAxis[] = {{PoseAxis::Tx, "tx"}, {PoseAxis::Ty, "t
 }  // namespace
 
 std::span<const EnumEntry<ThresholdMethod>> enumEntries(ThresholdMethod) { return kThreshold; }
+std::span<const EnumEntry<Binarization>> enumEntries(Binarization) { return kBinarization; }
 std::span<const EnumEntry<EdgeMethod>> enumEntries(EdgeMethod) { return kEdge; }
 std::span<const EnumEntry<ConnectivityMethod>> enumEntries(ConnectivityMethod) { return kConnectivity; }
 std::span<const EnumEntry<EllipseMethod>> enumEntries(EllipseMethod) { return kEllipse; }

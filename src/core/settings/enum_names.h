@@ -17,6 +17,7 @@ struct EnumEntry {
 };
 
 std::span<const EnumEntry<ThresholdMethod>> enumEntries(ThresholdMethod);
+std::span<const EnumEntry<Binarization>> enumEntries(Binarization);
 std::span<const EnumEntry<EdgeMethod>> enumEntries(EdgeMethod);
 std::span<const EnumEntry<ConnectivityMethod>> enumEntries(ConnectivityMethod);
 std::span<const EnumEntry<EllipseMethod>> enumEntries(EllipseMethod);

@@ -74,6 +74,21 @@ struct ThresholdOptions {
   int manual_value = 128;  // "Val", 0..255: pixels > value are white (eq. 2.1)
 };
 
+// How the searched region is binarized before edge detection (beyond the thesis, whose
+// one threshold per frame fails where light is uneven: local_threshold.h).
+enum class Binarization : std::uint8_t {
+  Global,           // the thesis: one threshold (pipeline.threshold) for the whole region
+  Local,            // each pixel against the mean of its window
+  GlobalThenLocal,  // the thesis's threshold; when it yields no target holding its spots, local
+};
+
+struct BinarizationOptions {
+  Binarization mode = Binarization::Global;
+  int window_px = 0;       // side of the local window; 0: a sixteenth of the image width
+  double offset = 0.15;    // black: darker than the window mean m by more than offset * m ...
+  int min_contrast = 12;   // ... and by more than this many grey levels
+};
+
 struct EllipseOptions {
   EllipseMethod method = EllipseMethod::DirectFit;
   FitAcceptRule accept_rule = FitAcceptRule::RelativeError;
@@ -150,6 +165,7 @@ struct CalibrationOptions {
 
 struct PipelineOptions {
   ThresholdOptions threshold;
+  BinarizationOptions binarization;
   EdgeMethod edge_method = EdgeMethod::Laplace;
   ConnectivityMethod connectivity = ConnectivityMethod::CN1;
   EllipseOptions ellipse;

@@ -101,6 +101,12 @@ void visitSettings(Visitor& v, Settings& s) {
       v.field("method", p.threshold.method);
       v.field("value", p.threshold.manual_value, 0, 255);
     });
+    v.object("binarization", [&] {
+      v.field("mode", p.binarization.mode);
+      v.field("window_px", p.binarization.window_px, 0, 4095);
+      v.field("offset", p.binarization.offset, 0.0, 1.0);
+      v.field("min_contrast", p.binarization.min_contrast, 0, 255);
+    });
     v.field("edge_method", p.edge_method);
     v.field("connectivity", p.connectivity);
     v.object("ellipse", [&] {
