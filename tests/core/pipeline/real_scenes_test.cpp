@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "core/pipeline/engine.h"
@@ -34,9 +36,11 @@ double percentile(std::vector<double> v, double p) {
 struct Figures {
   int frames = 0, posed = 0, correct = 0, wrong = 0;
   std::vector<double> rotation_deg, position_percent;
+  std::map<std::string, int> statuses;
 
   void add(const FrameResult& r, const Pose& truth) {
     ++frames;
+    ++statuses[std::string(statusName(r.status))];
     if (r.status != Status::Ok || !r.pose) return;
     ++posed;
     const double rotation = rotationAngleBetweenDeg(rotationMatrix(truth), rotationMatrix(*r.pose));
@@ -51,6 +55,9 @@ struct Figures {
                 what, frames, posed, 100.0 * posed / frames, correct, 100.0 * correct / frames, wrong,
                 percentile(rotation_deg, 0.5), percentile(rotation_deg, 0.95), percentile(position_percent, 0.5),
                 percentile(position_percent, 0.95));
+    std::printf("%-7s statuses:", what);
+    for (const auto& [name, n] : statuses) std::printf(" %s %d", name.c_str(), n);
+    std::printf("\n");
   }
 };
 
