@@ -1,5 +1,6 @@
 #include "core/source/real_scene_video.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace imagepro {

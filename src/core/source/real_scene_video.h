@@ -15,6 +15,7 @@ namespace imagepro {
 
 class RealSceneVideo {
  public:
+  // `scenes` (its settings and photographs) must outlive the video.
   RealSceneVideo(const RealScenes& scenes, std::uint64_t seed, int frames, int hidden = 12);
 
   int frames() const { return frames_; }

@@ -137,17 +137,19 @@ TEST(RealScenes, DefaultPipelineOnPhotographs) {
   // Measured at the time of writing (docs/accuracy.md): stills 47 of 120 posed, 44
   // correct, 3 off by more than 5 deg, rotation median 0.344 deg, position median
   // 0.102 %; no false detection in 30 negatives; video 66 of 138 visible frames
-  // correct, none wrong, none in hiding, the target found again 1 frame after it reappears.
-  EXPECT_GE(stills.correct, 44);
-  EXPECT_LE(stills.wrong, 3);
+  // correct, none wrong, none in hiding, the target found again 1 frame after it
+  // reappears. The floors leave a few frames for OpenCV's filters rounding differently
+  // on other processors (a grey level here and there moves a borderline frame).
+  EXPECT_GE(stills.correct, 42);
+  EXPECT_LE(stills.wrong, 4);
   EXPECT_LE(percentile(stills.rotation_deg, 0.5), 0.4);
   EXPECT_LE(percentile(stills.position_percent, 0.5), 0.15);
   EXPECT_EQ(false_detections, 0);
-  EXPECT_GE(visible.correct, 66);
-  EXPECT_EQ(visible.wrong, 0);
+  EXPECT_GE(visible.correct, 62);
+  EXPECT_LE(visible.wrong, 1);
   EXPECT_EQ(found_in_hiding, 0);
   EXPECT_GE(reacquired_after, 0);
-  EXPECT_LE(reacquired_after, 1);
+  EXPECT_LE(reacquired_after, 3);
 }
 
 }  // namespace
