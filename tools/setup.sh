@@ -19,12 +19,15 @@ jobs="${JOBS:-2}"
 
 # libqt6opengl6-dev is only recommended by qt6-base-dev, but Qt6Charts' CMake package
 # needs Qt6OpenGL, and recommends are not installed here.
+# opencv-doc (~96 MB) ships the photographs that real-scene frames are drawn over
+# (its examples/data folder); without it the real-scene tests skip.
 packages=(
   build-essential cmake pkg-config ccache
   qt6-base-dev qt6-charts-dev libqt6opengl6-dev libgl-dev
   libopencv-dev libopencv-contrib-dev libeigen3-dev nlohmann-json3-dev
   libv4l-dev libapriltag-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  opencv-doc
 )
 
 missing=()

@@ -3,13 +3,13 @@
 // docs/conventions.md, frame = PNG file name, so reconstruct's output compares row by row).
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <sstream>
 
-#include <opencv2/imgcodecs.hpp>
 
 #include "cli/command.h"
-#include "core/common/atomic_file.h"
+#include "cli/option_ranges.h"
+#include "cli/render_output.h"
+#include "cli/render_real.h"
 #include "core/common/pose_csv.h"
 #include "core/settings/enum_names.h"
 #include "core/source/sources.h"
@@ -17,8 +17,6 @@
 
 namespace imagepro::cli {
 namespace {
-
-namespace fs = std::filesystem;
 
 template <class E>
 E enumOption(const Args& args, const std::string& key, E fallback) {
@@ -89,11 +87,17 @@ void applyOptions(const Args& args, VirtualSceneOptions& s) {
   s.initial_pose = poseOption(args, s.initial_pose);
 }
 
-int run(const Args& args) {
-  args.rejectUnknown({"out", "frames", "mode", "motion", "axis", "amplitude", "period", "noise", "blur", "clutter",
-                      "gradient", "white", "black", "background", "seed", "rate", "pose", "pattern", "name",
-                      "append"});
-  if (!args.positionals().empty()) throw UsageError("unexpected argument \"" + args.positionals()[0] + "\"");
+// The settings keys the options above set, for the settings file's range checks.
+const std::vector<OptionKey> kOptionKeys = {
+    {"virtual.motion.amplitude", "--amplitude"}, {"virtual.motion.period_s", "--period"},
+    {"virtual.noise_sigma", "--noise"},          {"virtual.blur_sigma_px", "--blur"},
+    {"virtual.clutter", "--clutter"},            {"virtual.illumination_gradient", "--gradient"},
+    {"virtual.white_level", "--white"},          {"virtual.black_level", "--black"},
+    {"virtual.background_level", "--background"}, {"virtual.seed", "--seed"},
+    {"virtual.frame_rate_hz", "--rate"},         {"virtual.pose.", "--pose"},
+};
+
+int renderVirtual(const Args& args, Settings settings) {
   const auto out_dir = args.value("out");
   if (!out_dir || out_dir->empty()) throw UsageError("--out DIR is required");
   const int frames = args.integer("frames", 1);
@@ -102,24 +106,10 @@ int run(const Args& args) {
   if (name && frames != 1) throw UsageError("--name applies to a single frame (--frames 1)");
   if (name && (name->empty() || name->find('/') != std::string::npos))
     throw UsageError("--name must be a file name without a folder");
-
-  Settings settings = loadConfig(args);
   applyOptions(args, settings.virtual_scene);
+  checkOptionRanges(settings, kOptionKeys);
 
-  std::error_code ec;
-  fs::create_directories(*out_dir, ec);
-  if (ec || !fs::is_directory(*out_dir)) throw InputError(*out_dir + ": cannot create the folder (" + ec.message() + ")");
-  const std::string truth_path = (fs::path(*out_dir) / "truth.csv").string();
-  std::string csv;
-  std::string error;
-  if (args.has("append") && fs::exists(truth_path)) {
-    if (!readWholeFile(truth_path, csv, error)) throw InputError(error);
-    if (csv.rfind(poseCsvHeader(), 0) != 0) throw InputError(truth_path + ": not a pose CSV, cannot append");
-    if (!csv.empty() && csv.back() != '\n') csv += '\n';
-  } else {
-    csv = poseCsvHeader("in_view") + "\n";
-  }
-
+  RenderOutput out(*out_dir, args.has("append"), poseCsvHeader("in_view"));
   auto source = makeVirtualSource(settings, args.has("pattern") ? VirtualContent::Pattern : VirtualContent::Target);
   Frame frame;
   const auto start = std::chrono::steady_clock::now();
@@ -131,16 +121,8 @@ int run(const Args& args) {
     char file[64];
     std::snprintf(file, sizeof file, "frame_%05d.png", i);
     const std::string file_name = name ? *name + ".png" : std::string(file);
-    const std::string path = (fs::path(*out_dir) / file_name).string();
-    bool written = false;
-    try {
-      written = cv::imwrite(path, frame.image);
-    } catch (const cv::Exception& e) {
-      throw InputError(path + ": cannot be written (" + e.err + ")");
-    }
-    if (!written) throw InputError(path + ": cannot be written");
     const bool in_view = targetInView(settings.camera, settings.target, *frame.truth);
-    csv += poseCsvRow(file_name, Status::Ok, frame.truth, in_view ? "1" : "0") + "\n";
+    out.write(file_name, frame.image, poseCsvRow(file_name, Status::Ok, frame.truth, in_view ? "1" : "0"));
     const auto now = std::chrono::steady_clock::now();
     if (now - last_report > std::chrono::seconds(1)) {
       std::fprintf(stderr, "render: %d / %d frames\r", i + 1, frames);
@@ -149,38 +131,75 @@ int run(const Args& args) {
     }
   }
   if (progress_shown) std::fputc('\n', stderr);
-  if (!writeFileAtomically(truth_path, csv, error)) throw InputError(error);
+  out.commit();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr, "render: wrote %d frame%s and %s in %.1f s\n", frames, frames == 1 ? "" : "s",
-               truth_path.c_str(), seconds);
+               out.truthPath().c_str(), seconds);
   return 0;
+}
+
+int run(const Args& args) {
+  std::vector<std::string> known = {"out",   "frames", "mode",       "motion", "axis", "amplitude", "period",
+                                    "noise", "blur",   "clutter",    "gradient", "white", "black", "background",
+                                    "seed",  "rate",   "pose",       "pattern", "name", "append", "scene"};
+  known.insert(known.end(), kRealSceneOptions.begin(), kRealSceneOptions.end());
+  args.rejectUnknown(known);
+  if (!args.positionals().empty()) throw UsageError("unexpected argument \"" + args.positionals()[0] + "\"");
+  const std::string scene = args.valueOr("scene", "virtual");
+  if (scene != "virtual" && scene != "real" && scene != "video")
+    throw UsageError("--scene: \"" + scene + "\" is not one of virtual, real, video");
+  const Settings settings = loadConfig(args);
+  if (scene != "virtual") return renderRealScenes(args, settings, scene == "video");
+  for (const auto& key : kRealSceneOptions)
+    if (args.has(key)) throw UsageError("--" + key + " applies to --scene real or video only");
+  return renderVirtual(args, settings);
 }
 
 const CommandRegistration kRegistration{{
     "render",
-    "render virtual frames (PNG) and their ground-truth poses (truth.csv)",
-    "usage: imagepro-cli render --out DIR [--config FILE] [--frames N] [options]\n\n"
-    "Renders N frames (default 1) of the Virtual perspective projection source: the\n"
-    "target of the settings, seen through the settings' camera with its lens distortion,\n"
-    "at the pose of the virtual motion at t = i / rate. Writes DIR/frame_00000.png ...\n"
-    "and DIR/truth.csv (frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,in_view;\n"
-    "frame is the PNG file name, the pose is exact, in_view is 1 when the whole disk\n"
-    "faces the camera inside the image, else 0). Options override the settings'\n"
-    "\"virtual\" section:\n"
+    "render virtual or real-scene frames (PNG) and their ground-truth poses (truth.csv)",
+    "usage: imagepro-cli render --out DIR [--config FILE] [--scene virtual|real|video] [--frames N] [options]\n\n"
+    "--scene virtual (the default): renders N frames (default 1) of the Virtual perspective\n"
+    "projection source: the target of the settings, seen through the settings' camera with\n"
+    "its lens distortion, at the pose of the virtual motion at t = i / rate. Writes\n"
+    "DIR/frame_00000.png ... and DIR/truth.csv (frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,\n"
+    "Ty_mm,Tz_mm,in_view; frame is the PNG file name, the pose is exact, in_view is 1 when\n"
+    "the whole disk faces the camera inside the image, else 0). Options override the\n"
+    "settings' \"virtual\" section, within the ranges the settings file allows:\n"
     "  --mode M          binary (0/255, the thesis's) or grey (anti-aliased)\n"
     "  --motion K        static, sinusoid, saw-tooth or pendulum\n"
     "  --axis A          tx, ty, tz, rx, ry or rz: the parameter the motion moves\n"
     "  --amplitude A     mm or degrees;  --period S  seconds;  --rate HZ  frames per second\n"
-    "  --pose RX,RY,RZ,TX,TY,TZ   the initial pose (degrees, mm)\n"
-    "  --noise S         Gaussian noise sigma, grey levels (grey mode)\n"
-    "  --blur S          Gaussian blur sigma, pixels (grey mode)\n"
+    "  --pose RX,RY,RZ,TX,TY,TZ   the initial pose (degrees -360..360, mm, TZ > 0)\n"
+    "  --noise S         Gaussian noise sigma, 0..255 grey levels (grey mode)\n"
+    "  --blur S          Gaussian blur sigma, 0..50 pixels (grey mode)\n"
     "  --gradient G      illumination gradient across the width, -1..1 (grey mode)\n"
-    "  --clutter N       white bars and rectangles behind the target's card\n"
+    "  --clutter N       0..1000 white bars and rectangles behind the target's card\n"
     "  --white L --black L --background L   grey levels 0..255 (grey mode)\n"
     "  --seed N          clutter and noise seed\n"
     "  --pattern         the calibration pattern instead of the target alone\n"
     "  --name NAME       with --frames 1: write NAME.png instead of frame_00000.png\n"
-    "  --append          add rows to an existing DIR/truth.csv instead of replacing it",
+    "  --append          add rows to an existing DIR/truth.csv instead of replacing it\n\n"
+    "--scene real: N stills (default 1) of the settings' target on its black card over\n"
+    "photographs: 0.4-2.5 m away, tilted 0-60 deg, turned at random, the card inside the\n"
+    "frame; light falling off across the frame by up to +-40 %, optical blur 0.5-1.6 px,\n"
+    "2-6 px motion blur on a third of the frames, noise sigma 1-6, JPEG quality 40-95.\n"
+    "--scene video: one photograph, the target moving smoothly at 0.4-1.4 m, light\n"
+    "drifting +-30 %, blur 0.8 px, noise sigma 2, JPEG 75, N frames (default 150) at 25 Hz,\n"
+    "the target hidden for the middle 12. Both draw everything from --seed (the same seed,\n"
+    "the same frames) and write DIR/frame_00000.png ... and DIR/truth.csv, the pose CSV\n"
+    "with status NoTarget and no pose for a frame without the target, then in_view,\n"
+    "background (the photograph), white, black (the target's grey levels), light_shape,\n"
+    "light_amplitude, light_gain, blur_px, motion_px, motion_deg, noise_sigma, jpeg_quality.\n"
+    "  --backgrounds DIR the photographs (JPEG, PNG); default $IMAGEPRO_BACKGROUNDS, else\n"
+    "                    Debian's opencv-doc sample photographs\n"
+    "  --negatives M     (real) M more frames, DIR/negative_00000.png ..., drawn the same way\n"
+    "                    but without the target: false detections show there\n"
+    "  --hidden K        (video) frames without the target in the middle (default 12)\n"
+    "  --seed N          the set to draw (default: the settings' virtual seed)\n\n"
+    "Frames are written to a staging folder and moved in only when all are rendered, so\n"
+    "an interrupted render leaves DIR as it was (or, if stopped while moving them in, no\n"
+    "truth.csv): truth.csv never names frames other than the ones beside it.",
     {"pattern", "append"},
     run,
 }};

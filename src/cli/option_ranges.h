@@ -1,0 +1,21 @@
+#pragma once
+// Command-line options that set a value of the settings file accept exactly what the
+// file does: the changed settings are written out and read back by the settings
+// loader, so its ranges (written down once, in settings.cpp) apply, and NaN or
+// infinity, which JSON cannot hold, is refused.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/settings/settings.h"
+
+namespace imagepro::cli {
+
+// A settings key (or the prefix of a group, "virtual.pose.") and the option that sets it.
+using OptionKey = std::pair<std::string, std::string>;
+
+// Throws UsageError naming the option (and the settings key) when `settings` would be
+// refused by the settings loader.
+void checkOptionRanges(const Settings& settings, const std::vector<OptionKey>& options);
+
+}  // namespace imagepro::cli

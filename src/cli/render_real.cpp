@@ -1,0 +1,108 @@
+#include "cli/render_real.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/render_output.h"
+#include "core/common/pose_csv.h"
+#include "core/source/real_scene_video.h"
+
+namespace imagepro::cli {
+
+const std::vector<std::string> kRealSceneOptions = {"backgrounds", "negatives", "hidden"};
+const std::vector<std::string> kVirtualOnlyOptions = {"mode",  "motion", "axis",  "amplitude",  "period",
+                                                      "noise", "blur",   "clutter", "gradient", "white",
+                                                      "black", "background", "rate", "pose",   "pattern",
+                                                      "name",  "append"};
+
+namespace {
+
+namespace fs = std::filesystem;
+
+int count(const Args& args, const std::string& key, int fallback, int most) {
+  const int n = args.integer(key, fallback);
+  if (n < 0 || n > most) throw UsageError("--" + key + " must be 0.." + std::to_string(most));
+  return n;
+}
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
+}
+
+// truth.csv's columns after the pose: what the frame shows and how it was degraded.
+const char* kColumns = "in_view,background,white,black,light_shape,light_amplitude,light_gain,blur_px,motion_px,"
+                       "motion_deg,noise_sigma,jpeg_quality";
+
+std::string extraColumns(const RealSceneFrame& f) {
+  const SceneConditions& c = f.conditions;
+  return std::string(f.truth ? "1" : "0") + "," + csvField(fs::path(f.background).filename().string()) + "," +
+         std::to_string(f.look.white) + "," + std::to_string(f.look.black) + "," +
+         (c.light_shape == LightShape::Ramp ? "ramp" : "vignette") + "," + number(c.light_amplitude) + "," +
+         number(c.light_gain) + "," + number(c.blur_sigma_px) + "," + number(c.motion_blur_px) + "," +
+         number(c.motion_direction_deg) + "," + number(c.noise_sigma) + "," + std::to_string(c.jpeg_quality);
+}
+
+std::string frameName(const char* stem, int i) {
+  char file[64];
+  std::snprintf(file, sizeof file, "%s_%05d.png", stem, i);
+  return file;
+}
+
+}  // namespace
+
+int renderRealScenes(const Args& args, const Settings& settings, bool video) {
+  for (const auto& key : kVirtualOnlyOptions)
+    if (args.has(key)) throw UsageError("--" + key + " applies to --scene virtual only");
+  if (video && args.has("negatives")) throw UsageError("--negatives applies to --scene real only");
+  if (!video && args.has("hidden")) throw UsageError("--hidden applies to --scene video only");
+  const auto out_dir = args.value("out");
+  if (!out_dir || out_dir->empty()) throw UsageError("--out DIR is required");
+  const int frames = count(args, "frames", video ? 150 : 1, 100000);
+  const int negatives = count(args, "negatives", 0, 100000);
+  const int hidden = video ? count(args, "hidden", std::min(12, frames), frames) : 0;
+  if (frames + negatives == 0) throw UsageError("nothing to render: --frames and --negatives are both 0");
+  const int seed = args.integer("seed", static_cast<int>(settings.virtual_scene.seed));
+  if (seed < 0) throw UsageError("--seed must be 0 or more");
+
+  const std::string dir = args.valueOr("backgrounds", defaultBackgroundsDir());
+  std::vector<std::string> photos = listBackgrounds(dir);
+  if (photos.empty())
+    throw InputError(dir + ": no photographs (JPEG or PNG) there; name a folder with --backgrounds or install " +
+                     "Debian's opencv-doc (tools/setup.sh does)");
+  const RealScenes scenes(settings, std::move(photos));
+
+  RenderOutput out(*out_dir, false, poseCsvHeader(kColumns));
+  const auto start = std::chrono::steady_clock::now();
+  const RealSceneVideo sequence(scenes, static_cast<std::uint64_t>(seed), video ? frames : 0, hidden);
+  RealSceneFrame frame;
+  std::string error;
+  const int total = frames + negatives;
+  for (int i = 0; i < total; ++i) {
+    bool made = false;
+    std::string name;
+    if (video) {
+      made = sequence.frame(i, frame, error);
+      name = frameName("frame", i);
+    } else if (i < frames) {
+      made = scenes.still(static_cast<std::uint64_t>(seed), i, true, frame, error);
+      name = frameName("frame", i);
+    } else {  // negatives continue the stills' draws, so they show other photographs
+      made = scenes.still(static_cast<std::uint64_t>(seed), i, false, frame, error);
+      name = frameName("negative", i - frames);
+    }
+    if (!made) throw InputError("frame " + std::to_string(i) + ": " + error);
+    out.write(name, frame.image,
+              poseCsvRow(name, frame.truth ? Status::Ok : Status::NoTarget, frame.truth, extraColumns(frame)));
+  }
+  out.commit();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::fprintf(stderr, "render: wrote %d frame%s over photographs of %s and %s in %.1f s\n", total,
+               total == 1 ? "" : "s", dir.c_str(), out.truthPath().c_str(), seconds);
+  return 0;
+}
+
+}  // namespace imagepro::cli

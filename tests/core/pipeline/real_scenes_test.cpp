@@ -1,0 +1,156 @@
+// The default pipeline judged on real scenes (issue 17): the target drawn over
+// photographs with uneven light, blur, motion blur, noise and JPEG (core/source/
+// real_scene.h), negatives without it, and a video in which it hides for 12 frames.
+// The figures are printed; the thresholds are what the pipeline achieved when this
+// test was written (docs/accuracy.md, "Real scenes"), so a change that loses ground
+// fails, and one that gains it should raise them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/pipeline/engine.h"
+#include "core/source/real_scene_video.h"
+
+namespace imagepro {
+namespace {
+
+constexpr std::uint64_t kSeed = 1;
+constexpr int kStills = 120;
+constexpr int kNegatives = 30;
+constexpr int kVideoFrames = 150;
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const double at = p * (v.size() - 1);
+  const auto lo = static_cast<std::size_t>(at);
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (at - lo) * (v[hi] - v[lo]);
+}
+
+// What one set of frames with a target came to.
+struct Figures {
+  int frames = 0, posed = 0, correct = 0, wrong = 0;
+  std::vector<double> rotation_deg, position_percent;
+  std::map<std::string, int> statuses;
+
+  void add(const FrameResult& r, const Pose& truth) {
+    ++frames;
+    ++statuses[std::string(statusName(r.status))];
+    if (r.status != Status::Ok || !r.pose) return;
+    ++posed;
+    const double rotation = rotationAngleBetweenDeg(rotationMatrix(truth), rotationMatrix(*r.pose));
+    rotation_deg.push_back(rotation);
+    position_percent.push_back(100.0 * (translation(*r.pose) - translation(truth)).norm() / translation(truth).norm());
+    (rotation <= 5.0 ? correct : wrong)++;
+  }
+
+  void print(const char* what) const {
+    std::printf("%-7s frames %3d | with a pose %3d (%5.1f %%) | correct (<= 5 deg) %3d (%5.1f %%) | off by > 5 deg %2d | "
+                "rotation median %.3f p95 %.2f deg | position median %.3f p95 %.2f %% of the distance\n",
+                what, frames, posed, 100.0 * posed / frames, correct, 100.0 * correct / frames, wrong,
+                percentile(rotation_deg, 0.5), percentile(rotation_deg, 0.95), percentile(position_percent, 0.5),
+                percentile(position_percent, 0.95));
+    std::printf("%-7s statuses:", what);
+    for (const auto& [name, n] : statuses) std::printf(" %s %d", name.c_str(), n);
+    std::printf("\n");
+  }
+};
+
+Settings defaults() {
+  Settings s;
+  std::string error;
+  EXPECT_EQ(loadSettings(std::string(IMAGEPRO_DATA_DIR) + "/settings.json", s, error), Status::Ok) << error;
+  return s;
+}
+
+Frame asFrame(const RealSceneFrame& f, int index, const char* stem) {
+  Frame frame;
+  frame.image = f.image;
+  frame.index = index;
+  frame.name = std::string(stem) + std::to_string(index) + ".png";
+  frame.truth = f.truth;
+  return frame;
+}
+
+TEST(RealScenes, DefaultPipelineOnPhotographs) {
+  const std::string dir = defaultBackgroundsDir();
+  std::vector<std::string> photos = listBackgrounds(dir);
+  if (photos.empty())
+    GTEST_SKIP() << "no photographs in " << dir << ": install Debian's opencv-doc (tools/setup.sh does) or set "
+                 << "IMAGEPRO_BACKGROUNDS to a folder of JPEG/PNG photographs";
+  const Settings settings = defaults();
+  const RealScenes scenes(settings, std::move(photos));
+  std::string error;
+
+  // Stills and negatives, as `render --scene real --frames 120 --negatives 30 --seed 1` writes them.
+  Figures stills;
+  int false_detections = 0;
+  Engine engine(settings);
+  for (int i = 0; i < kStills + kNegatives; ++i) {
+    RealSceneFrame f;
+    ASSERT_TRUE(scenes.still(kSeed, i, i < kStills, f, error)) << error;
+    engine.resetTracking();  // unrelated stills
+    FrameResult r;
+    engine.process(asFrame(f, i, i < kStills ? "frame_" : "negative_"), r);
+    if (f.truth)
+      stills.add(r, *f.truth);
+    else
+      false_detections += r.status == Status::Ok && r.pose.has_value();
+  }
+
+  // The video, tracked from frame to frame as a camera's would be.
+  const RealSceneVideo video(scenes, kSeed, kVideoFrames);
+  Figures visible;
+  int found_in_hiding = 0, reacquired_after = -1;
+  Engine tracker(settings);
+  for (int i = 0; i < video.frames(); ++i) {
+    RealSceneFrame f;
+    ASSERT_TRUE(video.frame(i, f, error)) << error;
+    Frame frame = asFrame(f, i, "video_");
+    frame.name.clear();  // a stream, not files
+    frame.timestamp_s = i / RealSceneVideo::kFrameRateHz;
+    FrameResult r;
+    tracker.process(frame, r);
+    if (!f.truth) {
+      found_in_hiding += r.status == Status::Ok && r.pose.has_value();
+      continue;
+    }
+    const int correct_before = visible.correct;
+    visible.add(r, *f.truth);
+    if (i >= video.hiddenEnd() && reacquired_after < 0 && visible.correct > correct_before)
+      reacquired_after = i - video.hiddenEnd();
+  }
+
+  std::printf("Real scenes (seed %d, photographs of %s):\n", static_cast<int>(kSeed), dir.c_str());
+  stills.print("stills");
+  std::printf("negatives %d | false detections %d\n", kNegatives, false_detections);
+  visible.print("video");
+  std::printf("video: %d hidden frames, a pose in %d of them; first correct pose %d frames after the target "
+              "reappears (-1: never)\n",
+              video.hiddenEnd() - video.hiddenBegin(), found_in_hiding, reacquired_after);
+
+  // Measured at the time of writing (docs/accuracy.md): stills 47 of 120 posed, 44
+  // correct, 3 off by more than 5 deg, rotation median 0.344 deg, position median
+  // 0.102 %; no false detection in 30 negatives; video 66 of 138 visible frames
+  // correct, none wrong, none in hiding, the target found again 1 frame after it
+  // reappears. The floors leave a few frames for OpenCV's filters rounding differently
+  // on other processors (a grey level here and there moves a borderline frame).
+  EXPECT_GE(stills.correct, 42);
+  EXPECT_LE(stills.wrong, 4);
+  EXPECT_LE(percentile(stills.rotation_deg, 0.5), 0.4);
+  EXPECT_LE(percentile(stills.position_percent, 0.5), 0.15);
+  EXPECT_EQ(false_detections, 0);
+  EXPECT_GE(visible.correct, 62);
+  EXPECT_LE(visible.wrong, 1);
+  EXPECT_EQ(found_in_hiding, 0);
+  EXPECT_GE(reacquired_after, 0);
+  EXPECT_LE(reacquired_after, 3);
+}
+
+}  // namespace
+}  // namespace imagepro
