@@ -18,17 +18,26 @@ namespace {
 // backslashes, control characters); bytes that are not UTF-8 become U+FFFD rather than
 // invalid JSON.
 std::string jsonRow(const std::string& frame, const FrameResult& r) {
+  auto put = [](nlohmann::ordered_json& object, const Pose& p) {
+    object["Rx_deg"] = p.rx_deg;
+    object["Ry_deg"] = p.ry_deg;
+    object["Rz_deg"] = p.rz_deg;
+    object["Tx_mm"] = p.tx_mm;
+    object["Ty_mm"] = p.ty_mm;
+    object["Tz_mm"] = p.tz_mm;
+  };
   nlohmann::ordered_json row;
   row["frame"] = frame;
   row["status"] = std::string(statusName(r.status));
-  if (ok(r.status) && r.pose) {
-    const Pose& p = *r.pose;
-    row["Rx_deg"] = p.rx_deg;
-    row["Ry_deg"] = p.ry_deg;
-    row["Rz_deg"] = p.rz_deg;
-    row["Tx_mm"] = p.tx_mm;
-    row["Ty_mm"] = p.ty_mm;
-    row["Tz_mm"] = p.tz_mm;
+  if (ok(r.status) && r.pose) put(row, *r.pose);
+  if (r.status == Status::AmbiguousPose && r.ambiguous_poses) {
+    // Both of the rim's circles, the one that fits the spots better first.
+    row["candidates"] = nlohmann::ordered_json::array();
+    for (const Pose& p : *r.ambiguous_poses) {
+      nlohmann::ordered_json candidate;
+      put(candidate, p);
+      row["candidates"].push_back(candidate);
+    }
   }
   return row.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
@@ -107,6 +116,10 @@ const CommandRegistration kRegistration{{
         kFrameInputHelp +
         "\n\nOne row per frame: frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm.\n"
         "A frame without a target is a row with the error's name, not a failed command.\n"
+        "A pose that cannot be trusted is not ok either: AmbiguousPose (the rim's two\n"
+        "possible poses fit the spots about equally; with --format json both are given as\n"
+        "\"candidates\", the better-fitting first) or PoseInconsistent (the pose puts the\n"
+        "spots or the rim away from where the image has them).\n"
         "  --truth          add the ground-truth pose columns (virtual frames)\n"
         "  --no-pace        run a camera or virtual source as fast as possible, not at its frame rate\n"
         "  --data-out FILE  also write the full data-out CSV (regions, stage times) to FILE",

@@ -29,6 +29,10 @@ StatusText text(Status s) {
     case Status::AmbiguousTarget: return {"AmbiguousTarget", "more than one target was found in the frame"};
     case Status::SingularConic: return {"SingularConic", "the target's conic is singular"};
     case Status::SpotsNotFound: return {"SpotsNotFound", "the target's two spots were not found"};
+    case Status::AmbiguousPose:
+      return {"AmbiguousPose", "the target's two possible poses fit the image about equally well (far or blurred target)"};
+    case Status::PoseInconsistent:
+      return {"PoseInconsistent", "the pose does not put the spots where the image shows them"};
     case Status::AmbiguousSpots: return {"AmbiguousSpots", "more than two spot candidates inside the target"};
     case Status::CentreSpotOutsideEllipse: return {"CentreSpotOutsideEllipse", "the centre spot lies outside the target's ellipse"};
     case Status::NormalFacingAway: return {"NormalFacingAway", "the reconstructed target faces away from the camera"};

@@ -36,6 +36,8 @@ enum class Status : std::uint8_t {
   NormalFacingAway,
   OutOfImage,
   FrameSizeMismatch,   // the frame's size differs from the camera model's: its pose would be wrong
+  AmbiguousPose,       // the rim's two circles fit the spots about equally: either pose may be the one
+  PoseInconsistent,    // the pose does not reproject the spots where the image has them
   // camera
   CameraNotFound,
   CameraPermissionDenied,

@@ -23,6 +23,9 @@ struct Engine::Impl {
   Frame frame;
   StageChain chain;
   double last_track_time = -1.0;
+  // The last frame's pose in a stream, which decides between the rim's two circles where
+  // the spots cannot; forgotten after a miss and on stills.
+  std::optional<Pose> last_pose;
 
   void run(FrameResult& out);
 };
@@ -33,7 +36,10 @@ Engine::~Engine() = default;
 
 void Engine::setSettings(const Settings& settings) { impl_->settings = settings; }
 const Settings& Engine::settings() const { return impl_->settings; }
-void Engine::resetTracking() { impl_->tracker.reset(); }
+void Engine::resetTracking() {
+  impl_->tracker.reset();
+  impl_->last_pose.reset();
+}
 const Frame& Engine::lastFrame() const { return impl_->frame; }
 const cv::Mat& Engine::binaryImage() const { return impl_->chain.binary; }
 const EdgeList& Engine::edges() const { return impl_->chain.edges; }
@@ -56,6 +62,7 @@ Status Engine::step(FrameSource& source, FrameResult& out) {
     out.status = grabbed;
     out.times[Stage::Grab] = grab_us;
     if (grabbed != Status::EndOfStream) impl_->tracker.observeMiss();
+    impl_->last_pose.reset();
     return grabbed;
   }
   impl_->run(out);
@@ -80,10 +87,14 @@ void Engine::Impl::run(FrameResult& out) {
     // Only a stream is tracked (thesis appendix A: camera and virtual input). Image files
     // carry their name and are separate stills: the last one says nothing about the next.
     const bool stream = frame.name.empty();
-    if (!stream) tracker.reset();
+    if (!stream) {
+      tracker.reset();
+      last_pose.reset();
+    }
     if (stream) region = tracker.estimate(o.tracking, settings.camera, settings.target, t, grey.size()).value_or(region);
   }
-  runStageChain(settings, grey, region, TargetsToReconstruct::Best, chain, out);
+  runStageChain(settings, grey, region, TargetsToReconstruct::Best, chain, out, last_pose ? &*last_pose : nullptr);
+  last_pose = out.pose;
 
   // The tracker learns from every frame whose ellipse stage ran, and from every failure.
   const auto start = Clock::now();

@@ -90,9 +90,10 @@ void findTargets(const Settings& settings, const cv::Mat& grey, cv::Rect inside,
 
 // Whether a pass missed the target: a failure after the threshold was found (no edges, no
 // target, a reconstruction that failed), or, with every target reconstructed, none that
-// reconstructed. Two targets (AmbiguousTarget) are a finding, not a miss.
+// reconstructed. Two targets (AmbiguousTarget) or two poses (AmbiguousPose) are findings
+// of the target, not misses.
 bool missed(const FrameResult& out, TargetsToReconstruct which) {
-  if (out.status == Status::AmbiguousTarget) return false;
+  if (out.status == Status::AmbiguousTarget || out.status == Status::AmbiguousPose) return false;
   if (!ok(out.status)) return true;
   return which == TargetsToReconstruct::Every && out.reached == ApplicationLevel::Reconstruction && !out.pose;
 }
@@ -132,16 +133,17 @@ void swapPasses(StageChain& chain, FrameResult& out) {
 
 // The reconstruction chain of thesis 5.2.2 for the target found (or every target found).
 void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsToReconstruct which, StageChain& chain,
-                        FrameResult& out) {
+                        FrameResult& out, const Pose* expected) {
   if (!reached(settings.pipeline.level, ApplicationLevel::Reconstruction)) return;
   const auto start = Clock::now();
   out.reached = ApplicationLevel::Reconstruction;
   const ReconstructionConfig config = reconstructionConfig(settings);
   if (which == TargetsToReconstruct::Best) {
     out.status = reconstructTarget(config, grey, chain.detections.front().ellipse, out.threshold,
-                                   chain.reconstruction_ws, chain.reconstruction);
+                                   chain.reconstruction_ws, chain.reconstruction, expected);
     keepDisplayFeatures(chain.reconstruction, out);
     if (ok(out.status)) out.pose = chain.reconstruction.pose;
+    if (out.status == Status::AmbiguousPose) out.ambiguous_poses = chain.reconstruction.candidates.pose;
   } else {
     for (std::size_t i = 0; i < chain.detections.size(); ++i) {
       TargetSummary& target = out.targets[i];
@@ -161,7 +163,7 @@ void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsTo
 }  // namespace
 
 void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect region, TargetsToReconstruct which,
-                   StageChain& chain, FrameResult& out) {
+                   StageChain& chain, FrameResult& out, const Pose* expected) {
   const PipelineOptions& o = settings.pipeline;
   out.status = Status::Ok;
   out.reached = ApplicationLevel::Source;
@@ -171,6 +173,7 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
   out.paths = 0;
   out.targets.clear();
   out.pose.reset();
+  out.ambiguous_poses.reset();
   out.detected_region = {};
   out.contour_points.clear();
   for (Stage s : {Stage::Crop, Stage::Threshold, Stage::Edges, Stage::Connectivity, Stage::Ellipse, Stage::Reconstruction})
@@ -212,7 +215,7 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
   if (!ok(out.status) || !reached(o.level, ApplicationLevel::Edges)) return;
 
   findTargets(settings, grey, inside, which, chain, out);
-  if (ok(out.status)) reconstructTargets(settings, grey, which, chain, out);
+  if (ok(out.status)) reconstructTargets(settings, grey, which, chain, out, expected);
   if (o.binarization.mode == Binarization::GlobalThenLocal && missed(out, which)) {
     // Threshold cycling on a miss: the second pass, on the local binary image, into the
     // spare buffers; the first pass's report is restored if this one misses too.
@@ -222,8 +225,9 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
     binarizeLocal(searched, o.binarization, chain.local_ws, chain.binary);
     out.times[Stage::Threshold] += microsecondsSince(start);
     out.pose.reset();
+    out.ambiguous_poses.reset();
     findTargets(settings, grey, inside, which, chain, out);
-    if (ok(out.status)) reconstructTargets(settings, grey, which, chain, out);
+    if (ok(out.status)) reconstructTargets(settings, grey, which, chain, out, expected);
     if (missed(out, which)) {
       swapPasses(chain, out);
       restore(first, out);

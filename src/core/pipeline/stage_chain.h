@@ -72,7 +72,9 @@ inline bool stageRan(const FrameResult& result, ApplicationLevel stage) {
 // and Tracking times are the caller's. With TargetsToReconstruct::Every each target
 // carries its own reconstruction status and pose; out.status is then Ok when at least
 // one target was detected, and out.pose is the first target's that reconstructed.
+// `expected` (a tracked stream's last pose) decides between the rim's two circles where
+// the spots cannot (otherwise AmbiguousPose, both poses in out.ambiguous_poses).
 void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect region, TargetsToReconstruct which,
-                   StageChain& chain, FrameResult& out);
+                   StageChain& chain, FrameResult& out, const Pose* expected = nullptr);
 
 }  // namespace imagepro

@@ -201,30 +201,17 @@ Status circleCandidates(const CameraModel& cam, const Conic& undistortedConic, d
   return Status::Ok;
 }
 
-Status poseFromEllipse(const CameraModel& cam, const TargetGeometry& target,
-                       const Conic& undistortedConic, const Eigen::Vector2d& centreSpotPx,
-                       const Eigen::Vector2d& offsetSpotPx, Pose& out, bool weighCentreSpot) {
-  if (!undistortedConic.allFinite()) return Status::SingularConic;
-  if (!centreSpotPx.allFinite() || !offsetSpotPx.allFinite()) return Status::SpotsNotFound;
-  std::array<CircleCandidate, 2> cands;
-  if (const Status s = circleCandidates(cam, undistortedConic, target.radius_mm, cands); !ok(s))
-    return s;
+namespace {
 
-  // The centre spot must lie inside the rim's ellipse: the conic has there the sign it has
-  // at the ellipse's own centre.
-  const Eigen::Matrix3d C = conicToMatrix(undistortedConic);
-  Eigen::Vector2d ellipseCentre;
-  if (!conicMatrixCentre(C, ellipseCentre)) return Status::SingularConic;
-  if (!(conicValue(C, centreSpotPx) * conicValue(C, ellipseCentre) > 0.0))
-    return Status::CentreSpotOutsideEllipse;
-
-  // The candidate whose circle centre projects nearer the centre spot.
-  const double e0 = (projectIdeal(cam, cands[0].centre) - centreSpotPx).squaredNorm();
-  const double e1 = (projectIdeal(cam, cands[1].centre) - centreSpotPx).squaredNorm();
-  const CircleCandidate& chosen = e0 <= e1 ? cands[0] : cands[1];
-  const Eigen::Vector3d n =
-      weighCentreSpot ? weighedNormal(cam, target, undistortedConic, chosen, centreSpotPx) : chosen.normal;
-  const Eigen::Vector3d& T = chosen.centre;
+// The pose of one circle candidate: its normal (weighed with the centre spot's polar line
+// when asked), its centre, and +X through the offset spot's ray cut with its plane.
+Status poseOfCandidate(const CameraModel& cam, const TargetGeometry& target, const Conic& undistortedConic,
+                       const CircleCandidate& candidate, const Eigen::Vector2d& centreSpotPx,
+                       const Eigen::Vector2d& offsetSpotPx, bool weighCentreSpot, Pose& out) {
+  const Eigen::Vector3d n = weighCentreSpot
+                                ? weighedNormal(cam, target, undistortedConic, candidate, centreSpotPx)
+                                : candidate.normal;
+  const Eigen::Vector3d& T = candidate.centre;
   if (n.dot(T.normalized()) < std::cos(kMaxViewAngleDeg * M_PI / 180.0))
     return Status::NormalFacingAway;
   const double planeDistance = n.dot(T);
@@ -267,6 +254,61 @@ Status poseFromEllipse(const CameraModel& cam, const TargetGeometry& target,
   }
   if (!R.allFinite() || !T.allFinite()) return Status::SingularConic;
   out = poseFromRt(R, T);
+  return Status::Ok;
+}
+
+}  // namespace
+
+std::array<double, 2> spotReprojectionErrors(const CameraModel& cam, const TargetGeometry& target, const Pose& pose,
+                                             const Eigen::Vector2d& centreSpotPx, const Eigen::Vector2d& offsetSpotPx) {
+  const Eigen::Matrix3d R = rotationMatrix(pose);
+  const Eigen::Vector3d T = translation(pose);
+  std::array<double, 2> errors{};
+  const std::array<std::pair<double, Eigen::Vector2d>, 2> spots{{{0.0, centreSpotPx}, {target.spot_offset_mm, offsetSpotPx}}};
+  for (std::size_t i = 0; i < 2; ++i) {
+    const auto& [x_mm, observed] = spots[i];
+    Eigen::Vector2d predicted = projectIdeal(cam, R * Eigen::Vector3d(x_mm, 0.0, 0.0) + T);
+    Eigen::Vector2d bias;
+    if (target.spot_radius_mm > 0.0 && spotCentroidOffset(cam, R, T, x_mm, 0.0, target.spot_radius_mm, bias) &&
+        bias.allFinite())
+      predicted += bias;
+    errors[i] = (predicted - observed).norm();
+  }
+  return errors;
+}
+
+Status poseFromEllipse(const CameraModel& cam, const TargetGeometry& target, const Conic& undistortedConic,
+                       const Eigen::Vector2d& centreSpotPx, const Eigen::Vector2d& offsetSpotPx, Pose& out,
+                       bool weighCentreSpot, PoseCandidates* candidates) {
+  if (!undistortedConic.allFinite()) return Status::SingularConic;
+  if (!centreSpotPx.allFinite() || !offsetSpotPx.allFinite()) return Status::SpotsNotFound;
+  std::array<CircleCandidate, 2> cands;
+  if (const Status s = circleCandidates(cam, undistortedConic, target.radius_mm, cands); !ok(s))
+    return s;
+
+  // The centre spot must lie inside the rim's ellipse: the conic has there the sign it has
+  // at the ellipse's own centre.
+  const Eigen::Matrix3d C = conicToMatrix(undistortedConic);
+  Eigen::Vector2d ellipseCentre;
+  if (!conicMatrixCentre(C, ellipseCentre)) return Status::SingularConic;
+  if (!(conicValue(C, centreSpotPx) * conicValue(C, ellipseCentre) > 0.0))
+    return Status::CentreSpotOutsideEllipse;
+
+  // The candidate whose circle centre projects nearer the centre spot first.
+  const double e0 = (projectIdeal(cam, cands[0].centre) - centreSpotPx).squaredNorm();
+  const double e1 = (projectIdeal(cam, cands[1].centre) - centreSpotPx).squaredNorm();
+  if (e1 < e0) std::swap(cands[0], cands[1]);
+  PoseCandidates both;
+  for (int k = 0; k < 2; ++k) {
+    both.status[k] = poseOfCandidate(cam, target, undistortedConic, cands[k], centreSpotPx, offsetSpotPx,
+                                     weighCentreSpot, both.pose[k]);
+    if (ok(both.status[k]))
+      both.spot_errors_px[k] = spotReprojectionErrors(cam, target, both.pose[k], centreSpotPx, offsetSpotPx);
+  }
+  both.normals_apart_deg = angleBetween(cands[0].normal, cands[1].normal) * 180.0 / M_PI;
+  if (candidates) *candidates = both;
+  if (!ok(both.status[0])) return both.status[0];
+  out = both.pose[0];
   return Status::Ok;
 }
 

@@ -47,10 +47,24 @@ Status circleCandidates(const CameraModel& cam, const Conic& undistortedConic, d
 // (the target plane would be seen edge-on or from behind, or the offset spot's ray meets it
 // behind the camera), SpotsNotFound (the offset spot is not where the target's geometry
 // puts it relative to the centre).
+// `candidates`, when given, receives both circles' poses (the chosen one first) and how
+// well each reprojects the spots.
+struct PoseCandidates {
+  std::array<Pose, 2> pose{};
+  std::array<Status, 2> status{Status::Stopped, Status::Stopped};
+  std::array<std::array<double, 2>, 2> spot_errors_px{};  // spotReprojectionErrors of each (when Ok)
+  double normals_apart_deg = 0.0;                 // the angle between the two circles' normals
+};
 Status poseFromEllipse(const CameraModel& cam, const TargetGeometry& target,
                        const Conic& undistortedConic, const Eigen::Vector2d& centreSpotPx,
                        const Eigen::Vector2d& offsetSpotPx, Pose& out,
-                       bool weighCentreSpot = true);
+                       bool weighCentreSpot = true, PoseCandidates* candidates = nullptr);
+
+// The centre and the offset spot's distances (ideal pixels) between the observed centroid
+// and where `pose` puts the spot's image centroid (its centre's image plus the perspective
+// offset of spotCentroidOffset).
+std::array<double, 2> spotReprojectionErrors(const CameraModel& cam, const TargetGeometry& target, const Pose& pose,
+                             const Eigen::Vector2d& centreSpotPx, const Eigen::Vector2d& offsetSpotPx);
 
 // The plane normal from the polar line of the centre spot's image with respect to the conic
 // (the plane's vanishing line). Exact in theory for the image of the disk's centre; alone it

@@ -1,5 +1,9 @@
 #include "core/reconstruction/reconstruct.h"
 
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
 #include "core/ellipse/direct_fit.h"
 #include "core/reconstruction/pose.h"
 #include "core/reconstruction/undistort.h"
@@ -11,14 +15,80 @@ ReconstructionConfig reconstructionConfig(const Settings& settings) {
           settings.pipeline.reconstruction};
 }
 
+namespace {
+
+double rotationBetweenDeg(const Pose& a, const Pose& b) {
+  const Eigen::AngleAxisd turn(rotationMatrix(a).transpose() * rotationMatrix(b));
+  return std::abs(turn.angle()) * 180.0 / M_PI;
+}
+
+double normalsApartDeg(const Pose& a, const Pose& b) {
+  const Eigen::Vector3d na = rotationMatrix(a).col(2), nb = rotationMatrix(b).col(2);
+  return std::atan2(na.cross(nb).norm(), na.dot(nb)) * 180.0 / M_PI;
+}
+
+// Root-mean-square distance (first-order, Sampson) of the contour points from the rim's
+// image under `pose`.
+double rimReprojectionError(const CameraModel& cam, const TargetGeometry& target, const Pose& pose,
+                            const std::vector<Eigen::Vector2d>& contour) {
+  if (contour.empty()) return 0.0;
+  const Eigen::Matrix3d C = imageConicOfTargetCircle(cam, pose, 0.0, 0.0, target.radius_mm);
+  double sum = 0.0;
+  for (const Eigen::Vector2d& p : contour) {
+    const Eigen::Vector3d h(p.x(), p.y(), 1.0);
+    const Eigen::Vector3d g = C * h;
+    const double gradient = 2.0 * g.head<2>().norm();
+    const double d = gradient > 0.0 ? h.dot(g) / gradient : 0.0;
+    sum += d * d;
+  }
+  return std::sqrt(sum / static_cast<double>(contour.size()));
+}
+
+double sumOfSquares(const std::array<double, 2>& e) { return e[0] * e[0] + e[1] * e[1]; }
+
+// Of the rim's two circles (out.candidates, centre-nearest first), keeps the one that
+// reprojects the spots better when the spots tell them apart, else the one nearer
+// `expected`, else reports AmbiguousPose; then checks the kept pose against the image.
+// The spots are compared by the sum of their squared errors: the offset spot's radial
+// error and the centre spot's both tell the circles apart.
+Status choosePose(const ReconstructionConfig& config, const Pose* expected, ReconstructionResult& out) {
+  const ReconstructionOptions& o = config.options;
+  PoseCandidates& c = out.candidates;
+  auto swapCandidates = [&c] {
+    std::swap(c.pose[0], c.pose[1]);
+    std::swap(c.status[0], c.status[1]);
+    std::swap(c.spot_errors_px[0], c.spot_errors_px[1]);
+  };
+  if (ok(c.status[1]) && sumOfSquares(c.spot_errors_px[1]) < sumOfSquares(c.spot_errors_px[0])) swapCandidates();
+  if (ok(c.status[1]) && normalsApartDeg(c.pose[0], c.pose[1]) > o.ambiguity_min_deg) {
+    const double best = sumOfSquares(c.spot_errors_px[0]), other = sumOfSquares(c.spot_errors_px[1]);
+    const double needed =
+        std::max(o.ambiguity_margin_px * o.ambiguity_margin_px, (o.ambiguity_ratio * o.ambiguity_ratio - 1.0) * best);
+    if (!(other - best > needed)) {
+      if (!expected) return Status::AmbiguousPose;
+      if (rotationBetweenDeg(c.pose[1], *expected) < rotationBetweenDeg(c.pose[0], *expected)) swapCandidates();
+    }
+  }
+  out.pose = c.pose[0];
+  out.spot_error_px = std::max(c.spot_errors_px[0][0], c.spot_errors_px[0][1]);
+  out.rim_error_px = rimReprojectionError(config.camera, config.target, out.pose, out.contour_ideal);
+  if (out.spot_error_px > o.max_spot_error_px || out.rim_error_px > o.max_rim_error_px)
+    return Status::PoseInconsistent;
+  return Status::Ok;
+}
+
+}  // namespace
+
 Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey,
                          const Ellipse& detected, int frameThreshold,
-                         ReconstructionWorkspace& ws, ReconstructionResult& out) {
+                         ReconstructionWorkspace& ws, ReconstructionResult& out, const Pose* expected) {
   out.steps = ReconstructionSteps{};
   out.contour.clear();
   out.contour_ideal.clear();
   out.spots = SpotFeatures{};
   out.threshold = -1;
+  out.candidates = PoseCandidates{};
+  out.spot_error_px = out.rim_error_px = 0.0;
   auto fail = [&](Status& step, Status s) {
     step = s;
     out.status = s;
@@ -72,9 +142,10 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
   out.conic = fit.conic;
   out.ellipse = fit.ellipse;
 
-  const Status poseStatus = poseFromEllipse(config.camera, config.target, out.conic,
-                                            out.centre_spot_ideal, out.offset_spot_ideal, out.pose,
-                                            config.options.centre_spot_normal);
+  Status poseStatus = poseFromEllipse(config.camera, config.target, out.conic, out.centre_spot_ideal,
+                                      out.offset_spot_ideal, out.pose, config.options.centre_spot_normal,
+                                      &out.candidates);
+  if (ok(poseStatus)) poseStatus = choosePose(config, expected, out);
   if (!ok(poseStatus)) return fail(out.steps.pose, poseStatus);
   out.steps.pose = Status::Ok;
   out.status = Status::Ok;

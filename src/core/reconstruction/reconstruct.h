@@ -15,6 +15,7 @@
 #include "core/common/status.h"
 #include "core/ellipse/ellipse.h"
 #include "core/reconstruction/features.h"
+#include "core/reconstruction/pose.h"
 #include "core/settings/settings.h"
 
 namespace imagepro {
@@ -42,6 +43,11 @@ struct ReconstructionResult {
   Conic conic = Conic::Zero();  // the rim's ellipse in ideal (undistorted) pixels
   Ellipse ellipse;              // the same, geometric
   Pose pose;
+  // The rim's two circles completed into poses, the one kept first (AmbiguousPose: the
+  // better-fitting first), with the self-check's measures of the kept one.
+  PoseCandidates candidates;
+  double spot_error_px = 0.0;  // the larger of spotReprojectionErrors of the pose
+  double rim_error_px = 0.0;   // RMS distance of the contour points from the pose's rim
 };
 
 struct ReconstructionWorkspace {
@@ -60,9 +66,12 @@ ReconstructionConfig reconstructionConfig(const Settings& settings);
 // `detected` is the rim's ellipse found by the detection stage in the image as seen;
 // `frameThreshold` the threshold that stage used (for re-threshold None). A frame whose
 // size is not the camera model's gives FrameSizeMismatch.
+// `expected`, when given (a tracked stream's last pose), decides between the rim's two
+// circles when the spots cannot (see ReconstructionOptions).
 Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey,
                          const Ellipse& detected, int frameThreshold,
-                         ReconstructionWorkspace& ws, ReconstructionResult& out);
+                         ReconstructionWorkspace& ws, ReconstructionResult& out,
+                         const Pose* expected = nullptr);
 Status reconstructTarget(const Settings& settings, const cv::Mat& grey, const Ellipse& detected,
                          int frameThreshold, ReconstructionWorkspace& ws,
                          ReconstructionResult& out);

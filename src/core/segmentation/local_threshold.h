@@ -12,6 +12,9 @@
 // the spots inside it; a uniform area of any brightness is white.
 #include <opencv2/core.hpp>
 
+#include <cstdint>
+#include <vector>
+
 #include "core/settings/options.h"
 
 namespace imagepro {
@@ -21,9 +24,9 @@ namespace imagepro {
 // near target's spot), at least 15; always odd.
 int localWindowPx(const BinarizationOptions& options, cv::Size size);
 
-// Buffers reused from frame to frame.
+// Buffers reused from frame to frame (no heap allocation once grown).
 struct LocalThresholdWorkspace {
-  cv::Mat mean;
+  std::vector<std::uint32_t> column_sums;  // per column: the sum over the window's rows
 };
 
 // `binary` as described above, CV_8UC1 of grey's size, keeping its allocation from call

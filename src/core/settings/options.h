@@ -83,7 +83,7 @@ enum class Binarization : std::uint8_t {
 };
 
 struct BinarizationOptions {
-  Binarization mode = Binarization::Global;
+  Binarization mode = Binarization::GlobalThenLocal;
   int window_px = 0;       // side of the local window; 0: a sixteenth of the image width
   double offset = 0.15;    // black: darker than the window mean m by more than offset * m ...
   int min_contrast = 12;   // ... and by more than this many grey levels
@@ -133,6 +133,18 @@ struct ReconstructionOptions {
   // fixes the normal poorly (docs/reconstruction.md, docs/accuracy.md).
   bool centre_spot_normal = true;
   int crop_margin_px = 4;
+  // Self-check (docs/reconstruction.md): a pose that puts a spot's image further than this
+  // from where it was found, or the rim's further (RMS) from its contour points, is
+  // PoseInconsistent.
+  double max_spot_error_px = 1.0;
+  double max_rim_error_px = 1.0;
+  // The rim's two circles: the one reprojecting the spots better is kept when its error is
+  // ambiguity_ratio times smaller and sqrt(error^2 + margin^2) below the other's; else, if
+  // their normals lie more than ambiguity_min_deg apart, the frame is AmbiguousPose (a
+  // tracked stream takes the one nearer the last pose).
+  double ambiguity_ratio = 1.5;
+  double ambiguity_margin_px = 0.1;
+  double ambiguity_min_deg = 5.0;
 };
 
 struct TrackingOptions {

@@ -142,6 +142,11 @@ void visitSettings(Visitor& v, Settings& s) {
       v.field("contour_mode", p.reconstruction.contour_mode);
       v.field("centre_spot_normal", p.reconstruction.centre_spot_normal);
       v.field("crop_margin_px", p.reconstruction.crop_margin_px, 0, 1000);
+      v.field("max_spot_error_px", p.reconstruction.max_spot_error_px, 0.0, kInf);
+      v.field("max_rim_error_px", p.reconstruction.max_rim_error_px, 0.0, kInf);
+      v.field("ambiguity_ratio", p.reconstruction.ambiguity_ratio, 1.0, kInf);
+      v.field("ambiguity_margin_px", p.reconstruction.ambiguity_margin_px, 0.0, kInf);
+      v.field("ambiguity_min_deg", p.reconstruction.ambiguity_min_deg, 0.0, 180.0);
     });
     v.object("tracking", [&] {
       TrackingOptions& t = p.tracking;
