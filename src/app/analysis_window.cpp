@@ -398,7 +398,7 @@ void AnalysisWindow::run() {
     auto out = std::make_shared<PendulumStudyResult>();
     if (input() == AnalysisInput::VirtualScene) {
       const VirtualPendulumParams params = pendulumParams();
-      startTask([out, settings, params, this] { *out = runVirtualPendulum(settings, params, progress_); },
+      startTask([out, settings, params, this] { *out = runVirtualPendulum(settings, params, progress_.callbacks()); },
                 [out, this] {
                   pendulum_ = std::move(*out);
                   showPendulum();
@@ -428,7 +428,7 @@ void AnalysisWindow::run() {
   summary_->clear();
   auto out = std::make_shared<TwoTargetStudyResult>();
   const VirtualTwoTargetParams params = twoTargetParams();
-  startTask([out, settings, params, this] { *out = runVirtualTwoTargets(settings, params, progress_); },
+  startTask([out, settings, params, this] { *out = runVirtualTwoTargets(settings, params, progress_.callbacks()); },
             [out, this] {
               two_targets_ = std::move(*out);
               showTwoTargets();

@@ -2,8 +2,8 @@
 // sequence of a target on a swinging pendulum (a data-out or reconstruct CSV, or frames
 // reconstructed here from a video, images, a camera or the virtual pendulum): the
 // period, the pivot and length by the constrained sphere fit of eqs. 5.2-5.6, and g by
-// eq. 5.1, with their uncertainties; plots of the translations (fig. 5.10) and the
-// rotations (fig. 5.13) over time.
+// eq. 5.1, with their uncertainties (core/analysis/pendulum_study.h); plots of the
+// translations (fig. 5.10) and the rotations (fig. 5.13) over time, where asked.
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -16,48 +16,19 @@
 #include "cli/command.h"
 #include "cli/frame_input.h"
 #include "cli/plot_png.h"
-#include "core/analysis/pendulum.h"
-#include "core/analysis/pendulum_scene.h"
-#include "core/analysis/pose_series.h"
+#include "core/analysis/pendulum_study.h"
 #include "core/pipeline/data_out.h"
-#include "core/pipeline/engine.h"
-#include "core/source/virtual_motion.h"
 
 namespace imagepro::cli {
 namespace {
 
 using json = nlohmann::ordered_json;
 
-// Reconstructs every frame of `source`; times from the frames' timestamps, or the
-// frame index / frame_rate_hz when they do not increase (image files).
-std::vector<PoseSample> reconstructSequence(FrameSource& source, const Settings& settings, double frame_rate_hz,
-                                            DataOut* data_out) {
-  Engine engine(settings);
-  FrameResult r;
-  std::vector<PoseSample> samples;
-  std::vector<double> indices;
-  while (engine.step(source, r) != Status::EndOfStream) {
-    PoseSample s;
-    s.t_s = r.timestamp_s;
-    s.valid = ok(r.status) && r.pose.has_value();
-    if (s.valid) s.pose = *r.pose;
-    samples.push_back(s);
-    indices.push_back(static_cast<double>(r.index));
-    if (data_out && data_out->isOpen()) {
-      std::string error;
-      if (!data_out->write(r, error)) std::fprintf(stderr, "data out stopped: %s\n", error.c_str());
-    }
-  }
-  bool increasing = true;
-  for (std::size_t i = 1; increasing && i < samples.size(); ++i) increasing = samples[i].t_s > samples[i - 1].t_s;
-  if (!increasing) {
-    if (!(frame_rate_hz > 0.0)) throw UsageError("the frames have no times: give --rate");
-    for (std::size_t i = 0; i < samples.size(); ++i) samples[i].t_s = indices[i] / frame_rate_hz;
-  }
-  return samples;
-}
-
-void writePlots(const std::string& prefix, const std::vector<PoseSample>& samples) {
+// DIR/pendulum-translations.png and DIR/pendulum-rotations.png (the folder made if need be).
+void writePlots(const std::string& dir, const std::vector<PoseSample>& samples) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError(dir + ": cannot make the folder (" + ec.message() + ")");
   const char* names[2][3] = {{"Tx", "Ty", "Tz"}, {"Rx", "Ry", "Rz"}};
   const cv::Scalar colours[3] = {cv::Scalar(200, 80, 0), cv::Scalar(0, 140, 0), cv::Scalar(0, 60, 220)};
   for (int kind = 0; kind < 2; ++kind) {
@@ -89,26 +60,35 @@ void writePlots(const std::string& prefix, const std::vector<PoseSample>& sample
       }
       plot.series.push_back(std::move(series));
     }
-    const std::string path = prefix + (kind == 0 ? "-translations.png" : "-rotations.png");
+    const std::string path =
+        (std::filesystem::path(dir) / (kind == 0 ? "pendulum-translations.png" : "pendulum-rotations.png")).string();
     std::string error;
     if (!writePlotPng(path, plot, error)) throw InputError(error);
     std::fprintf(stderr, "wrote %s\n", path.c_str());
   }
 }
 
+// Each frame that could not be read, then the analysis's failure: one line each.
+const PendulumStudyResult& checked(const PendulumStudyResult& result) {
+  if (!ok(result.status)) throw InputError(result.error);
+  for (const std::string& frame : result.unreadable) std::fprintf(stderr, "%s\n", frame.c_str());
+  return result;
+}
+
 int run(const Args& args) {
   std::vector<std::string> known = kFrameInputOptions;
-  known.insert(known.end(), {"format", "plot", "no-plot", "rate", "no-amplitude-correction", "noise", "blur-exposure",
+  known.insert(known.end(), {"format", "plots", "rate", "no-amplitude-correction", "noise", "blur-exposure",
                              "subframes", "data-out"});
   args.rejectUnknown(known);
   const std::string format = args.valueOr("format", "text");
   if (format != "text" && format != "json") throw UsageError("--format: \"" + format + "\" is not text or json");
-  Settings settings = loadConfig(args);
+  const Settings settings = loadConfig(args);
   const bool virtual_input = args.has("virtual");
   for (const char* option : {"noise", "blur-exposure", "subframes"})
     if (args.has(option) && !virtual_input) throw UsageError(std::string("--") + option + " goes with --virtual");
   const double rate_hz = args.number("rate", settings.virtual_scene.frame_rate_hz);
   if (!(rate_hz > 0.0)) throw UsageError("--rate must be above 0");
+  const bool amplitude_correction = !args.has("no-amplitude-correction");
 
   const bool csv_input = args.positionals().size() == 1 &&
                          std::filesystem::path(args.positionals()[0]).extension() == ".csv";
@@ -123,55 +103,41 @@ int run(const Args& args) {
     std::string error;
     if (!ok(data_out.open(*path, ExistingFile::Fail, error))) throw InputError(error);
   }
-
-  std::vector<PoseSample> samples;
-  if (csv_input) {
+  const FrameResultSink write_data_out = [&data_out](const FrameResult& r) {
+    if (!data_out.isOpen()) return;
     std::string error;
-    if (!ok(readPoseSeries(args.positionals()[0], rate_hz, samples, error))) throw InputError(error);
+    if (!data_out.write(r, error)) std::fprintf(stderr, "data out stopped: %s\n", error.c_str());
+  };
+
+  PendulumStudyResult result;
+  if (csv_input) {
+    result = runPendulumFile(args.positionals()[0], rate_hz, amplitude_correction);
   } else if (virtual_input) {
     if (!args.positionals().empty()) throw UsageError("give either --virtual or input files, not both");
-    settings.virtual_scene.frame_rate_hz = rate_hz;
-    settings.virtual_scene.noise_sigma = args.number("noise", 3.0);
-    if (!(settings.virtual_scene.noise_sigma >= 0.0)) throw UsageError("--noise must be 0 or more");
-    MotionBlur blur;
-    blur.exposure_s = args.number("blur-exposure", 0.0);
-    blur.subframes = args.integer("subframes", blur.subframes);
-    if (!(blur.exposure_s >= 0.0)) throw UsageError("--blur-exposure must be 0 or more");
-    if (blur.subframes < 2) throw UsageError("--subframes must be at least 2");
-    const int frames = args.integer("frames", 250);
-    if (frames < 1) throw UsageError("--frames must be at least 1");
-    PendulumSource pendulum(settings, blur);
-    // Ends the endless source after `frames`.
-    struct Limited final : FrameSource {
-      FrameSource& inner;
-      int left;
-      Limited(FrameSource& s, int n) : inner(s), left(n) {}
-      Status next(Frame& out) override { return left-- > 0 ? inner.next(out) : Status::EndOfStream; }
-      std::string lastError() const override { return inner.lastError(); }
-      double frameRateHz() const override { return inner.frameRateHz(); }
-      std::string describe() const override { return inner.describe(); }
-    } limited(pendulum, frames);
-    std::fprintf(stderr, "reconstructing %d frames of the %s ...\n", frames, pendulum.describe().c_str());
-    samples = reconstructSequence(limited, settings, rate_hz, &data_out);
+    VirtualPendulumParams params;
+    params.rate_hz = rate_hz;
+    params.amplitude_correction = amplitude_correction;
+    params.noise_sigma = args.number("noise", params.noise_sigma);
+    if (!(params.noise_sigma >= 0.0)) throw UsageError("--noise must be 0 or more");
+    params.blur.exposure_s = args.number("blur-exposure", 0.0);
+    params.blur.subframes = args.integer("subframes", params.blur.subframes);
+    if (!(params.blur.exposure_s >= 0.0)) throw UsageError("--blur-exposure must be 0 or more");
+    if (params.blur.subframes < 2) throw UsageError("--subframes must be at least 2");
+    params.frames = args.integer("frames", params.frames);
+    if (params.frames < 1) throw UsageError("--frames must be at least 1");
+    std::fprintf(stderr, "reconstructing %d frames of the virtual pendulum %.0f Hz%s ...\n", params.frames, rate_hz,
+                 params.blur.exposure_s > 0.0 ? ", motion blur" : "");
+    result = runVirtualPendulum(settings, params, {}, write_data_out);
   } else {
     auto source = openFrameInput(args, settings);
-    samples = reconstructSequence(*source, settings, rate_hz, &data_out);
+    result = runPendulumSource(*source, settings, rate_hz, amplitude_correction, {}, write_data_out);
   }
   data_out.close();
-
-  if (!args.has("no-plot")) writePlots(args.valueOr("plot", "pendulum"), samples);
-
-  PendulumAnalysisOptions options;
-  options.amplitude_correction = !args.has("no-amplitude-correction");
-  PendulumAnalysis a;
-  const Status status = analyzePendulum(samples, options, a);
-  if (!ok(status))
-    throw InputError(std::string(statusName(status)) + ": " + std::string(statusMessage(status)) +
-                     " (" + std::to_string(a.valid_frames) + " of " + std::to_string(samples.size()) +
-                     " frames with a pose)");
+  if (const auto dir = args.value("plots"); dir && !result.samples.empty()) writePlots(*dir, result.samples);
+  const PendulumAnalysis& a = checked(result).analysis;
 
   const PendulumOptions& truth = settings.virtual_scene.pendulum;
-  const double true_period = virtual_input ? pendulumPeriodS(truth) : 0.0;
+  const double true_period = result.truth.period_s;  // 0 but for the virtual pendulum
   if (format == "json") {
     json j;
     j["frames"] = a.frames;
@@ -185,7 +151,7 @@ int run(const Args& args) {
     j["amplitude_deg"] = a.amplitude_deg;
     j["small_amplitude_period_s"] = a.small_amplitude_period_s;
     j["g_uncorrected_m_s2"] = a.g_uncorrected_m_s2;
-    j["amplitude_correction"] = options.amplitude_correction;
+    j["amplitude_correction"] = amplitude_correction;
     j["pivot_mm"] = {a.sphere.centre_mm.x(), a.sphere.centre_mm.y(), a.sphere.centre_mm.z()};
     j["crossings"] = a.period.crossings;
     if (virtual_input) {
@@ -203,7 +169,7 @@ int run(const Args& args) {
   std::printf("length        %.2f +- %.2f mm  (pivot %.1f, %.1f, %.1f mm; RMS off the sphere %.3f mm)\n", a.length_mm,
               a.length_sigma_mm, a.sphere.centre_mm.x(), a.sphere.centre_mm.y(), a.sphere.centre_mm.z(),
               a.sphere.radial_rms_mm);
-  if (options.amplitude_correction)
+  if (amplitude_correction)
     std::printf("g             %.4f +- %.4f m/s^2  (small-amplitude period %.5f s; eq. 5.1 with the measured "
                 "period: %.4f)\n",
                 a.g_m_s2, a.g_sigma_m_s2, a.small_amplitude_period_s, a.g_uncorrected_m_s2);
@@ -222,7 +188,7 @@ int run(const Args& args) {
 const CommandRegistration kRegistration{{
     "pendulum",
     "period, length and g from a target on a swinging pendulum (thesis 5.3.2)",
-    std::string("usage: imagepro-cli pendulum [--config FILE] [--format text|json] [--plot PREFIX | --no-plot]\n"
+    std::string("usage: imagepro-cli pendulum [--config FILE] [--format text|json] [--plots DIR]\n"
                 "                             [--rate HZ] [--no-amplitude-correction] [--data-out FILE] INPUT\n\n"
                 "input: FILE.csv (data out, or the output of imagepro-cli reconstruct)\n"
                 "       or --virtual [--frames N] [--noise SIGMA] [--blur-exposure S [--subframes N]]\n"
@@ -238,12 +204,12 @@ const CommandRegistration kRegistration{{
         "  --no-amplitude-correction   g by eq. 5.1 with the measured period, as in the thesis\n"
         "  --blur-exposure S           virtual: motion blur, exposure S seconds centred on each frame,\n"
         "                              averaged over --subframes renders (default 8)\n"
-        "  --plot PREFIX               PREFIX-translations.png (thesis fig. 5.10) and PREFIX-rotations.png\n"
-        "                              (fig. 5.13); default prefix \"pendulum\"; --no-plot writes none\n"
+        "  --plots DIR                 DIR/pendulum-translations.png (thesis fig. 5.10) and\n"
+        "                              DIR/pendulum-rotations.png (fig. 5.13); none without it\n"
         "  --data-out FILE             also write the reconstructed frames as data out\n"
         "  --format json               length_mm, period_s, g_m_s2 and their sigmas (and the true values\n"
         "                              for --virtual)",
-    {"virtual", "no-plot", "no-amplitude-correction"},
+    {"virtual", "no-amplitude-correction"},
     run,
 }};
 

@@ -2,13 +2,12 @@
 // targets of every frame are reconstructed, with and without distortion correction;
 // the distance between their centres and the angle between their normals are compared
 // with the object's known values and summarised (mean, std, largest error) like thesis
-// figs. 5.3-5.8. Input: images, a video, a camera, or the virtual object.
+// figs. 5.3-5.8 (core/analysis/two_target_study.h). Input: images, a video, a camera,
+// or the virtual object.
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,8 +15,8 @@
 #include "cli/command.h"
 #include "cli/frame_input.h"
 #include "cli/plot_png.h"
-#include "core/analysis/error_summary.h"
-#include "core/analysis/two_targets.h"
+#include "core/analysis/two_target_study.h"
+#include "core/common/atomic_file.h"
 #include "core/common/pose_csv.h"
 
 namespace imagepro::cli {
@@ -25,20 +24,10 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-// The two ways every frame is processed.
-constexpr bool kCorrections[2] = {true, false};
-
-struct FrameMeasure {
-  std::string frame;
-  int position = 0;  // virtual object position, 0 for other input
-  const char* lighting = "";
-  Status status[2] = {Status::Stopped, Status::Stopped};  // [corrected, uncorrected]
-  TwoTargetMeasurement m[2];
-};
-
+// The frames of one virtual position, or all frames of other input.
 struct Group {
   int position = 0;
-  std::vector<const FrameMeasure*> frames;
+  std::vector<const TwoTargetFrame*> frames;
 };
 
 std::string fmt(double v, int decimals) {
@@ -47,16 +36,11 @@ std::string fmt(double v, int decimals) {
   return buf;
 }
 
-// Errors of the frames measured with correction `c`.
-void errors(const Group& g, int c, const TwoTargetObject& object, std::vector<double>& distance,
-            std::vector<double>& angle) {
-  distance.clear();
-  angle.clear();
-  for (const FrameMeasure* f : g.frames) {
-    if (!ok(f->status[c])) continue;
-    distance.push_back(f->m[c].distance_mm - object.spacing_mm);
-    angle.push_back(f->m[c].angle_deg - object.angle_deg);
-  }
+std::string frameLabel(const TwoTargetFrame& f) { return f.name.empty() ? std::to_string(f.index) : f.name; }
+
+const char* lightingName(const TwoTargetFrame& f) {
+  if (!f.lighting) return "";
+  return *f.lighting == StudyLighting::Natural ? "natural" : "extra";
 }
 
 json summaryJson(const ErrorSummary& s) {
@@ -65,8 +49,8 @@ json summaryJson(const ErrorSummary& s) {
 
 void writePlots(const std::string& prefix, const Group& g, const TwoTargetObject& object) {
   const std::string tag = g.position > 0 ? "-position" + std::to_string(g.position) : "";
-  const char* names[2] = {"distortion corrected", "not corrected"};
-  const cv::Scalar colours[2] = {cv::Scalar(200, 80, 0), cv::Scalar(0, 100, 220)};
+  const char* names[kCorrections] = {"distortion corrected", "not corrected"};
+  const cv::Scalar colours[kCorrections] = {cv::Scalar(200, 80, 0), cv::Scalar(0, 100, 220)};
   for (int quantity = 0; quantity < 2; ++quantity) {
     Plot plot;
     const std::string where = g.position > 0 ? ", position " + std::to_string(g.position) : "";
@@ -75,12 +59,14 @@ void writePlots(const std::string& prefix, const Group& g, const TwoTargetObject
                  (quantity == 0 ? " mm)" : " deg)");
     plot.x_label = "frame";
     plot.y_label = quantity == 0 ? "distance [mm]" : "angle [deg]";
-    for (int c = 0; c < 2; ++c) {
+    for (int c = 0; c < kCorrections; ++c) {
       PlotSeries s{names[c], colours[c], {}, {}};
       for (std::size_t i = 0; i < g.frames.size(); ++i) {
-        const FrameMeasure& f = *g.frames[i];
+        const TwoTargetFrame& f = *g.frames[i];
         s.x.push_back(static_cast<double>(i));
-        s.y.push_back(!ok(f.status[c]) ? NAN : quantity == 0 ? f.m[c].distance_mm : f.m[c].angle_deg);
+        s.y.push_back(!ok(f.status[c])           ? NAN
+                      : quantity == 0 ? f.measurement[c].distance_mm
+                                      : f.measurement[c].angle_deg);
       }
       plot.series.push_back(std::move(s));
     }
@@ -91,13 +77,60 @@ void writePlots(const std::string& prefix, const Group& g, const TwoTargetObject
   }
 }
 
+// One row per frame and correction, written whole or not at all.
+void writeCsv(const std::string& path, const TwoTargetStudyResult& result) {
+  const TwoTargetObject& object = result.object;
+  std::string csv = "frame,position,lighting,correction,status,distance_mm,angle_deg,distance_error_mm,angle_error_deg\n";
+  for (const TwoTargetFrame& f : result.frames)
+    for (int c = 0; c < kCorrections; ++c) {
+      csv += csvField(frameLabel(f)) + ',' + (f.position > 0 ? std::to_string(f.position) : "") + ',' +
+             lightingName(f) + ',' + (kCorrectionOn[c] ? "on" : "off") + ',' + std::string(statusName(f.status[c]));
+      const TwoTargetMeasurement& m = f.measurement[c];
+      if (ok(f.status[c]))
+        csv += ',' + fmt(m.distance_mm, 4) + ',' + fmt(m.angle_deg, 4) + ',' + fmt(m.distance_mm - object.spacing_mm, 4) +
+               ',' + fmt(m.angle_deg - object.angle_deg, 4);
+      else
+        csv += ",,,,";
+      csv += '\n';
+    }
+  std::string error;
+  if (!writeFileAtomically(path, csv, error)) throw InputError(error);
+  std::fprintf(stderr, "wrote %s\n", path.c_str());
+}
+
+TwoTargetStudyResult measureVirtual(const Args& args, const Settings& settings, const TwoTargetObject& object) {
+  if (!args.positionals().empty()) throw UsageError("give either --virtual or image files, not both");
+  for (const char* option : {"camera", "video", "size", "fps"})
+    if (args.has(option)) throw UsageError(std::string("--") + option + " does not go with --virtual");
+  VirtualTwoTargetParams params;
+  params.object = object;
+  const std::string lens = args.valueOr("lens", "thesis");
+  if (lens != "thesis" && lens != "settings") throw UsageError("--lens: \"" + lens + "\" is not thesis or settings");
+  params.thesis_lens = lens == "thesis";
+  params.noise_sigma = args.number("noise", params.noise_sigma);
+  if (!(params.noise_sigma >= 0.0)) throw UsageError("--noise must be 0 or more");
+  if (!twoTargetObjectFits(object, settings.virtual_scene.card_size_mm))
+    throw UsageError("--spacing too small for the cards: each target centre must lie at least half a card (" +
+                     fmt(0.5 * settings.virtual_scene.card_size_mm, 1) + " mm) from the edge between the faces");
+  params.frames_per_position = args.integer("frames", params.frames_per_position);
+  if (params.frames_per_position < 2) throw UsageError("--frames must be at least 2");
+  const std::string which = args.valueOr("position", "all");
+  if (which == "1" || which == "2" || which == "3")
+    params.position = std::stoi(which);
+  else if (which != "all")
+    throw UsageError("--position: \"" + which + "\" is not 1, 2, 3 or all");
+  TwoTargetStudyResult result = runVirtualTwoTargets(settings, params, {});
+  if (result.status == Status::InvalidSettings) throw UsageError(result.error);
+  return result;
+}
+
 int run(const Args& args) {
   std::vector<std::string> known = kFrameInputOptions;
   known.insert(known.end(), {"format", "spacing", "angle", "position", "lens", "noise", "csv", "plot"});
   args.rejectUnknown(known);
   const std::string format = args.valueOr("format", "text");
   if (format != "text" && format != "json") throw UsageError("--format: \"" + format + "\" is not text or json");
-  Settings settings = loadConfig(args);
+  const Settings settings = loadConfig(args);
   TwoTargetObject object;
   object.spacing_mm = args.number("spacing", object.spacing_mm);
   object.angle_deg = args.number("angle", object.angle_deg);
@@ -107,139 +140,49 @@ int run(const Args& args) {
   for (const char* option : {"position", "lens", "noise"})
     if (args.has(option) && !virtual_input) throw UsageError(std::string("--") + option + " goes with --virtual");
 
-  std::vector<FrameMeasure> measures;
-  MultiTargetWorkspace ws;
-  MultiTargetResult result;
-  Settings runs[2] = {settings, settings};
-  auto measure = [&](const cv::Mat& image, FrameMeasure& f) {
-    for (int c = 0; c < 2; ++c) {
-      f.status[c] = reconstructAllTargets(runs[c], image, ws, result);
-      if (ok(f.status[c])) f.status[c] = measureTwoTargets(result, f.m[c]);
-    }
-  };
-  auto prepareRuns = [&] {
-    for (int c = 0; c < 2; ++c) {
-      runs[c] = settings;
-      runs[c].pipeline.reconstruction.distortion_correction = kCorrections[c];
-    }
-  };
-
+  TwoTargetStudyResult result;
   if (virtual_input) {
-    if (!args.positionals().empty()) throw UsageError("give either --virtual or image files, not both");
-    for (const char* option : {"camera", "video", "size", "fps"})
-      if (args.has(option)) throw UsageError(std::string("--") + option + " does not go with --virtual");
-    const std::string lens = args.valueOr("lens", "thesis");
-    if (lens == "thesis")
-      settings.camera.distortion = kThesisCameraDistortion;
-    else if (lens != "settings")
-      throw UsageError("--lens: \"" + lens + "\" is not thesis or settings");
-    settings.virtual_scene.noise_sigma = args.number("noise", 2.0);
-    if (!(settings.virtual_scene.noise_sigma >= 0.0)) throw UsageError("--noise must be 0 or more");
-    if (!twoTargetObjectFits(object, settings.virtual_scene.card_size_mm))
-      throw UsageError("--spacing too small for the cards: each target centre must lie at least half a card (" +
-                       fmt(0.5 * settings.virtual_scene.card_size_mm, 1) + " mm) from the edge between the faces");
-    const int frames = args.integer("frames", 40);
-    if (frames < 2) throw UsageError("--frames must be at least 2");
-    std::vector<int> positions;
-    const std::string which = args.valueOr("position", "all");
-    if (which == "all")
-      positions = {1, 2, 3};
-    else if (which == "1" || which == "2" || which == "3")
-      positions = {std::stoi(which)};
-    else
-      throw UsageError("--position: \"" + which + "\" is not 1, 2, 3 or all");
-    prepareRuns();
-    TwoTargetRenderWorkspace render_ws;
-    cv::Mat image;
-    measures.reserve(positions.size() * static_cast<std::size_t>(frames));
-    for (const int position : positions) {
-      const Pose object_pose = twoTargetStudyPosition(position);
-      for (int i = 0; i < frames; ++i) {
-        // The thesis's order: natural light for the first half, extra lights for the second.
-        const StudyLighting lighting = i < frames / 2 ? StudyLighting::Natural : StudyLighting::Extra;
-        VirtualSceneOptions scene = settings.virtual_scene;
-        applyStudyLighting(lighting, scene);
-        renderTwoTargets(settings.camera, settings.target, scene, object, object_pose, image,
-                         static_cast<std::uint64_t>(measures.size()), render_ws);
-        FrameMeasure f;
-        f.frame = std::to_string(measures.size());
-        f.position = position;
-        f.lighting = lighting == StudyLighting::Natural ? "natural" : "extra";
-        measure(image, f);
-        measures.push_back(f);
-      }
-    }
+    result = measureVirtual(args, settings, object);
   } else {
-    prepareRuns();
     auto source = openFrameInput(args, settings);
-    Frame frame;
-    for (;;) {
-      const Status s = source->next(frame);
-      if (s == Status::EndOfStream) break;
-      FrameMeasure f;
-      f.frame = frame.name.empty() ? std::to_string(frame.index) : frame.name;
-      if (ok(s)) {
-        measure(frame.image, f);
-      } else {
-        f.status[0] = f.status[1] = s;
-        if (!source->lastError().empty()) std::fprintf(stderr, "%s: %s\n", f.frame.c_str(), source->lastError().c_str());
-      }
-      measures.push_back(f);
+    result = runTwoTargetSource(*source, settings, object, {});
+    for (const TwoTargetFrame& f : result.frames)
+      if (!f.error.empty()) std::fprintf(stderr, "%s: %s\n", frameLabel(f).c_str(), f.error.c_str());
+  }
+
+  if (const auto path = args.value("csv")) writeCsv(*path, result);
+
+  if (const auto prefix = args.value("plot")) {
+    std::vector<Group> groups;
+    for (const TwoTargetFrame& f : result.frames) {
+      if (groups.empty() || groups.back().position != f.position) groups.push_back(Group{f.position, {}});
+      groups.back().frames.push_back(&f);
     }
-  }
-
-  if (const auto path = args.value("csv")) {
-    std::ofstream out(*path);
-    if (!out) throw InputError(*path + ": cannot open for writing");
-    out << "frame,position,lighting,correction,status,distance_mm,angle_deg,distance_error_mm,angle_error_deg\n";
-    for (const FrameMeasure& f : measures)
-      for (int c = 0; c < 2; ++c) {
-        out << csvField(f.frame) << ',' << (f.position > 0 ? std::to_string(f.position) : "") << ',' << f.lighting
-            << ',' << (kCorrections[c] ? "on" : "off") << ',' << statusName(f.status[c]);
-        if (ok(f.status[c]))
-          out << ',' << fmt(f.m[c].distance_mm, 4) << ',' << fmt(f.m[c].angle_deg, 4) << ','
-              << fmt(f.m[c].distance_mm - object.spacing_mm, 4) << ',' << fmt(f.m[c].angle_deg - object.angle_deg, 4);
-        else
-          out << ",,,,";
-        out << '\n';
-      }
-    if (!out.flush()) throw InputError(*path + ": cannot be written");
-    std::fprintf(stderr, "wrote %s\n", path->c_str());
-  }
-
-  // One group per virtual position, or one for the whole input.
-  std::vector<Group> groups;
-  for (const FrameMeasure& f : measures) {
-    if (groups.empty() || groups.back().position != f.position) groups.push_back(Group{f.position, {}});
-    groups.back().frames.push_back(&f);
-  }
-  if (const auto prefix = args.value("plot"))
     for (const Group& g : groups) writePlots(*prefix, g, object);
+  }
 
   json summaries = json::array();
-  std::vector<double> distance, angle;
   std::string text = "known: distance " + fmt(object.spacing_mm, 2) + " mm, angle " + fmt(object.angle_deg, 2) +
                      " deg\n\n"
                      "position  correction  measured       distance error [mm]         angle error [deg]\n"
                      "                                     mean     std     max       mean     std     max\n";
-  for (const Group& g : groups)
-    for (int c = 0; c < 2; ++c) {
-      errors(g, c, object, distance, angle);
-      const ErrorSummary d = summarizeErrors(distance), a = summarizeErrors(angle);
-      json j;
-      if (g.position > 0) j["position"] = g.position;
-      j["distortion_correction"] = kCorrections[c];
-      j["frames"] = g.frames.size();
-      j["measured"] = d.samples;
-      j["distance_error_mm"] = summaryJson(d);
-      j["angle_error_deg"] = summaryJson(a);
-      summaries.push_back(j);
-      char line[200];
-      std::snprintf(line, sizeof line, "%-9s %-11s %4d/%-4zu  %7.3f %7.3f %7.3f    %7.3f %7.3f %7.3f\n",
-                    g.position > 0 ? std::to_string(g.position).c_str() : "-", kCorrections[c] ? "on" : "off",
-                    d.samples, g.frames.size(), d.mean, d.std, d.max_abs, a.mean, a.std, a.max_abs);
-      text += line;
-    }
+  for (const TwoTargetSummary& s : result.summaries) {
+    const ErrorSummary& d = s.distance_mm;
+    const ErrorSummary& a = s.angle_deg;
+    json j;
+    if (s.position > 0) j["position"] = s.position;
+    j["distortion_correction"] = s.correction;
+    j["frames"] = s.frames;
+    j["measured"] = d.samples;
+    j["distance_error_mm"] = summaryJson(d);
+    j["angle_error_deg"] = summaryJson(a);
+    summaries.push_back(j);
+    char line[200];
+    std::snprintf(line, sizeof line, "%-9s %-11s %4d/%-4d  %7.3f %7.3f %7.3f    %7.3f %7.3f %7.3f\n",
+                  s.position > 0 ? std::to_string(s.position).c_str() : "-", s.correction ? "on" : "off", d.samples,
+                  s.frames, d.mean, d.std, d.max_abs, a.mean, a.std, a.max_abs);
+    text += line;
+  }
   if (format == "json") {
     json out;
     out["known"] = json{{"distance_mm", object.spacing_mm}, {"angle_deg", object.angle_deg}};
@@ -249,17 +192,7 @@ int run(const Args& args) {
     std::printf("%s", text.c_str());
   }
   // Why frames were not measured, once per reason.
-  std::vector<std::pair<Status, int>> reasons;
-  for (const FrameMeasure& f : measures)
-    for (const Status s : f.status) {
-      if (ok(s)) continue;
-      auto it = std::find_if(reasons.begin(), reasons.end(), [&](const auto& r) { return r.first == s; });
-      if (it == reasons.end())
-        reasons.emplace_back(s, 1);
-      else
-        ++it->second;
-    }
-  for (const auto& [s, count] : reasons)
+  for (const auto& [s, count] : result.failures)
     std::fprintf(stderr, "%d measurements: %s (%s)\n", count, std::string(statusName(s)).c_str(),
                  std::string(statusMessage(s)).c_str());
   return 0;

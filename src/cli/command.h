@@ -1,6 +1,7 @@
 #pragma once
-// imagepro-cli subcommands. Each lives in its own cmd_<name>.cpp and registers
-// itself with a static CommandRegistration, so adding a command touches one file.
+// The subcommands of imagepro-cli and imagepro-studies. Each lives in its own
+// cmd_<name>.cpp and registers itself with a static CommandRegistration, so adding a
+// command touches one file; both programs' main() is runCommands.
 #include <functional>
 #include <map>
 #include <optional>
@@ -57,5 +58,10 @@ struct CommandRegistration {
 };
 
 const std::map<std::string, Command>& commands();
+
+// The whole main() of a program made of registered commands: the overview (`summary`
+// is its first line), each command's --help, and every error as one line prefixed
+// with `program` (usage: exit 2; input and anything else: exit 1).
+int runCommands(const char* program, const char* summary, int argc, char** argv);
 
 }  // namespace imagepro::cli

@@ -182,8 +182,8 @@ void AnalysisWindowTest::dataOutFileGivesTheCliNumbers() {
     }
   }
   QProcess cli;
-  cli.start(QStringLiteral(IMAGEPRO_CLI), {QStringLiteral("pendulum"), QStringLiteral("--format"), QStringLiteral("json"),
-                                          QStringLiteral("--no-plot"), path});
+  cli.start(QStringLiteral(IMAGEPRO_CLI),
+            {QStringLiteral("pendulum"), QStringLiteral("--format"), QStringLiteral("json"), path});
   QVERIFY(cli.waitForFinished(60000));
   QCOMPARE(cli.exitCode(), 0);
   const QJsonObject expected = QJsonDocument::fromJson(cli.readAllStandardOutput()).object();

@@ -1,4 +1,4 @@
-// imagepro-cli reconstruct (JSON output), estimate-d0 and accuracy, run as a user would,
+// imagepro-cli reconstruct (JSON output) and estimate-d0, run as a user would,
 // their output checked against the renderer's exact poses.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "cli_run.h"
+#include "support/cli_run.h"
 #include "core/common/atomic_file.h"
 #include "support/test_dirs.h"
 
@@ -182,26 +182,6 @@ TEST(CliReconstruction, EstimateD0RecoversTheRenderedImagePlaneDistance) {
   r = cli("estimate-d0 --focal-length " + std::string(f) + " " + (dir / "blank.png").string());
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(lines(r.out).at(1), "blank.png,NoTarget,,,");
-}
-
-// The accuracy study end to end on the smallest run: a complete report.
-TEST(CliReconstruction, AccuracySmokeRunWritesItsReport) {
-  const fs::path dir = freshDir("cli_reconstruction_accuracy");
-  const fs::path out = dir / "accuracy.md";
-  const CliRun r = cli("accuracy --frames 2 --seed 3 --out " + out.string());
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  std::string md, e;
-  ASSERT_TRUE(readWholeFile(out.string(), md, e)) << e;
-  EXPECT_EQ(md.rfind("# Accuracy\n", 0), 0u);
-  for (const char* part :
-       {"`imagepro-cli accuracy --frames 2 --seed 3`", "## Goals (issue 4)", "| detection, whole target visible |",
-        "The same goals per tilt band", "## No lens distortion", "## Thesis camera's lens distortion, corrected",
-        "| sub-pixel | 2 |", "| ArUco 4x4 (IPPE) | 2 |", "## The plane normal", "## Lens distortion correction",
-        "| thesis camera x 1.0 |"})
-    EXPECT_NE(md.find(part), std::string::npos) << part;
-  EXPECT_EQ(md.find("nan"), std::string::npos);
-  const CliRun bad = cli("accuracy --frames 0");
-  EXPECT_EQ(bad.exit_code, 2);
 }
 
 }  // namespace

@@ -16,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-#include "cli_run.h"
+#include "support/cli_run.h"
 #include "support/test_dirs.h"
 
 namespace imagepro {

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "cli_run.h"
+#include "support/cli_run.h"
 #include "core/common/atomic_file.h"
 #include "support/test_dirs.h"
 

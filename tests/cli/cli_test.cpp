@@ -13,7 +13,7 @@
 #include <thread>
 #include <vector>
 
-#include "cli_run.h"
+#include "support/cli_run.h"
 #include "core/common/atomic_file.h"
 #include "support/test_dirs.h"
 
@@ -29,8 +29,11 @@ using test::lines;
 TEST(Cli, OverviewListsTheCommands) {
   const CliRun r = cli("--help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* c : {"reconstruct", "render", "threshold", "edges", "bench", "settings", "track-study"})
+  for (const char* c : {"reconstruct", "render", "threshold", "edges", "bench", "settings", "pendulum", "two-targets"})
     EXPECT_NE(r.out.find(c), std::string::npos) << c;
+  // The studies are imagepro-studies' commands.
+  for (const char* c : {"accuracy", "calibration-study", "track-study", "bench-peers"})
+    EXPECT_EQ(r.out.find(std::string("  ") + c + " "), std::string::npos) << c;
 }
 
 TEST(Cli, EveryCommandHasHelp) {

@@ -1,4 +1,4 @@
-#include "core/reconstruction/reference_marker.h"
+#include "studies/reference_marker.h"
 
 #include <Eigen/LU>
 #include <opencv2/aruco.hpp>
@@ -11,7 +11,7 @@
 
 #include "core/reconstruction/undistort.h"
 
-namespace imagepro {
+namespace imagepro::studies {
 
 namespace {
 
@@ -196,4 +196,4 @@ Status estimateMarkerPose(const CameraModel& cam, const MarkerGeometry& marker, 
   return Status::Ok;
 }
 
-}  // namespace imagepro
+}  // namespace imagepro::studies

@@ -1,5 +1,5 @@
 #pragma once
-// The AprilTag 3 peer of `imagepro-cli bench` (Debian's libapriltag, family
+// The AprilTag 3 peer of `imagepro-studies bench-peers` (Debian's libapriltag, family
 // tag36h11): draws the tag at a target's pose into a frame, and detects it and
 // estimates its pose with the library's own calls.
 #include <opencv2/core.hpp>
@@ -9,7 +9,7 @@
 #include "core/common/geometry.h"
 #include "core/common/status.h"
 
-namespace imagepro::cli {
+namespace imagepro::studies {
 
 class AprilTagPeer {
  public:
@@ -30,4 +30,4 @@ class AprilTagPeer {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace imagepro::cli
+}  // namespace imagepro::studies

@@ -14,7 +14,7 @@
 #include "core/common/status.h"
 #include "core/settings/options.h"
 
-namespace imagepro {
+namespace imagepro::studies {
 
 struct MarkerGeometry {
   double square_mm = 100.0;  // side of the black square (border included)
@@ -36,4 +36,4 @@ void applySceneEffects(const VirtualSceneOptions& scene, std::uint64_t seed, cv:
 // failure is Diverged.
 Status estimateMarkerPose(const CameraModel& cam, const MarkerGeometry& marker, const cv::Mat& grey, Pose& out);
 
-}  // namespace imagepro
+}  // namespace imagepro::studies

@@ -1,4 +1,4 @@
-// imagepro-cli accuracy: the measured accuracy of the whole chain (docs/accuracy.md).
+// imagepro-studies accuracy: the measured accuracy of the whole chain (docs/accuracy.md).
 // Renders virtual grey frames at random poses with noise, blur, illumination gradient and
 // clutter, with and without the thesis camera's lens distortion, detects and reconstructs
 // the target in every contour mode, and compares with the truth; at the very same poses and
@@ -19,12 +19,14 @@
 #include "core/pipeline/engine.h"
 #include "core/reconstruction/pose.h"
 #include "core/reconstruction/reconstruct.h"
-#include "core/reconstruction/reference_marker.h"
+#include "studies/reference_marker.h"
 #include "core/reconstruction/undistort.h"
 #include "core/source/virtual_renderer.h"
 
-namespace imagepro::cli {
+namespace imagepro::studies {
 namespace {
+
+using namespace imagepro::cli;
 
 constexpr double kDeg = M_PI / 180.0;
 constexpr double kMinDistanceMm = 400.0, kMaxDistanceMm = 1200.0;
@@ -366,7 +368,7 @@ int run(const Args& args) {
 
   const Settings defaults;
   std::string md = "# Accuracy\n\n";
-  md += format("Produced by `imagepro-cli accuracy --frames %d --seed %d` (%.0f s on this machine); every figure "
+  md += format("Produced by `imagepro-studies accuracy --frames %d --seed %d` (%.0f s on this machine); every figure "
                "below comes from that run.\n\n",
                frames, static_cast<int>(seed), seconds);
   md += format(
@@ -538,7 +540,7 @@ int run(const Args& args) {
 const CommandRegistration kRegistration{{
     "accuracy",
     "measure the reconstruction's accuracy on virtual frames against an ArUco marker (docs/accuracy.md)",
-    "usage: imagepro-cli accuracy [--config FILE] [--frames N] [--seed S] [--out FILE]\n\n"
+    "usage: imagepro-studies accuracy [--config FILE] [--frames N] [--seed S] [--out FILE]\n\n"
     "Renders N virtual grey frames at random poses (distance 400-1200 mm, tilt 0-60 deg, any\n"
     "in-plane rotation, noise, blur, gradient, clutter) without and N with the thesis camera's\n"
     "lens distortion, detects and reconstructs the target in every contour mode and, at the\n"
@@ -552,4 +554,4 @@ const CommandRegistration kRegistration{{
 }};
 
 }  // namespace
-}  // namespace imagepro::cli
+}  // namespace imagepro::studies

@@ -1,4 +1,4 @@
-// imagepro-cli calibration-study: the measured accuracy of the lens distortion calibration
+// imagepro-studies calibration-study: the measured accuracy of the lens distortion calibration
 // (thesis 4.6) written to docs/calibration.md. Four virtual images of the pattern at +-45 deg
 // about x and y, grey, blurred and noisy, through the thesis camera's distortion: the field
 // the procedure recovers against the true one over the whole image, next to OpenCV's
@@ -26,15 +26,17 @@
 #include "core/pipeline/engine.h"
 #include "core/source/virtual_renderer.h"
 
-namespace imagepro::cli {
+namespace imagepro::studies {
 namespace {
+
+using namespace imagepro::cli;
 
 constexpr double kViewDistanceMm = 800.0;
 constexpr double kNoiseSigma = 3.0, kBlurSigmaPx = 0.8;
 constexpr double kDeg = M_PI / 180.0;
 // Everything from this line on in an existing FILE is written by hand (the application's
 // calibration wizard) and kept when the figures above it are measured again.
-constexpr const char* kKeptSectionsMarker = "<!-- Hand-written sections below: kept by imagepro-cli calibration-study -->";
+constexpr const char* kKeptSectionsMarker = "<!-- Hand-written sections below: kept by imagepro-studies calibration-study -->";
 
 std::string format(const char* fmt, ...) {
   char buf[1024];
@@ -342,7 +344,7 @@ int run(const Args& args) {
   if (frames < 10 || frames > 100000) throw UsageError("--frames must be 10..100000");
   const int seed = args.integer("seed", 1);
   const Settings settings = loadConfig(args);
-  std::string command = "imagepro-cli calibration-study --out " + *out;
+  std::string command = "imagepro-studies calibration-study --out " + *out;
   if (args.has("frames")) command += " --frames " + std::to_string(frames);
   if (args.has("seed")) command += " --seed " + std::to_string(seed);
   if (const auto config = args.value("config")) command += " --config " + *config;
@@ -530,7 +532,7 @@ int run(const Args& args) {
 const CommandRegistration kRegistration{{
     "calibration-study",
     "measure the distortion calibration against the truth and OpenCV (docs/calibration.md)",
-    "usage: imagepro-cli calibration-study --out FILE [--frames N] [--seed S] [--config FILE]\n\n"
+    "usage: imagepro-studies calibration-study --out FILE [--frames N] [--seed S] [--config FILE]\n\n"
     "Calibrates from four virtual pattern views (+-45 deg about x and y, grey, blurred, noisy,\n"
     "the thesis camera's distortion) and compares the recovered distortion field with the true one\n"
     "and with OpenCV's cv::calibrateCamera on the same spot grid; then reconstructs N distorted\n"
@@ -542,4 +544,4 @@ const CommandRegistration kRegistration{{
 }};
 
 }  // namespace
-}  // namespace imagepro::cli
+}  // namespace imagepro::studies

@@ -1,5 +1,5 @@
 #pragma once
-// A peer for the throughput comparison of `imagepro-cli bench`: the target's pose
+// A peer for the throughput comparison of `imagepro-studies bench-peers`: the target's pose
 // by a pipeline composed of stock OpenCV calls — Otsu threshold, findContours,
 // fitEllipseDirect, the ellipse with two holes as the target, then solvePnP on
 // points sampled around the ellipse (matched to the disk's rim through the affine
@@ -11,7 +11,7 @@
 #include "core/common/geometry.h"
 #include "core/common/status.h"
 
-namespace imagepro::cli {
+namespace imagepro::studies {
 
 struct OpenCvPeerWorkspace {
   cv::Mat binary;
@@ -24,4 +24,4 @@ struct OpenCvPeerWorkspace {
 Status opencvPeerPose(const cv::Mat& grey, const CameraModel& camera, const TargetGeometry& target,
                       OpenCvPeerWorkspace& ws, Pose& out);
 
-}  // namespace imagepro::cli
+}  // namespace imagepro::studies

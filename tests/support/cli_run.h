@@ -1,5 +1,5 @@
-// Runs imagepro-cli as a user would, for the CLI tests: the exit code and what it
-// printed on each stream.
+// Runs imagepro-cli or imagepro-studies as a user would, for the tests of their
+// commands: the exit code and what it printed on each stream.
 #pragma once
 
 #include <sys/wait.h>
@@ -21,14 +21,16 @@ struct CliRun {
   std::string out, err;
 };
 
-// Runs the CLI with `args`, capturing stdout and stderr through files.
-inline CliRun cli(const std::string& args) {
+// Runs `program` with `args` (in the folder `cwd` when one is given), capturing stdout
+// and stderr through files.
+inline CliRun runProgram(const std::string& program, const std::string& args, const std::string& cwd = {}) {
   namespace fs = std::filesystem;
   // ctest runs the tests in parallel processes: each captures into files of its own.
   const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / ("cli_" + std::to_string(getpid()));
   fs::create_directories(dir);
   const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
-  const std::string command = std::string(IMAGEPRO_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
+  const std::string in_folder = cwd.empty() ? "" : "cd '" + cwd + "' && ";
+  const std::string command = in_folder + program + " " + args + " >" + out + " 2>" + err + " </dev/null";
   const int status = std::system(command.c_str());
   CliRun r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -37,6 +39,13 @@ inline CliRun cli(const std::string& args) {
   readWholeFile(err, r.err, e);
   return r;
 }
+
+#ifdef IMAGEPRO_CLI
+inline CliRun cli(const std::string& args) { return runProgram(IMAGEPRO_CLI, args); }
+#endif
+#ifdef IMAGEPRO_STUDIES
+inline CliRun studies(const std::string& args) { return runProgram(IMAGEPRO_STUDIES, args); }
+#endif
 
 inline std::vector<std::string> lines(const std::string& text) {
   std::vector<std::string> out;

@@ -1,12 +1,12 @@
-#include "core/reconstruction/reference_marker.h"
+#include "studies/reference_marker.h"
 
 #include <gtest/gtest.h>
 
 #include "core/source/virtual_renderer.h"
-#include "status_print.h"
-#include "test_scenes.h"
+#include "core/reconstruction/status_print.h"
+#include "core/reconstruction/test_scenes.h"
 
-namespace imagepro {
+namespace imagepro::studies {
 namespace {
 
 using testing::makePose;
@@ -63,4 +63,4 @@ TEST_F(MarkerTest, NotFoundAndFoundTwice) {
 }
 
 }  // namespace
-}  // namespace imagepro
+}  // namespace imagepro::studies

@@ -1,4 +1,4 @@
-// imagepro-cli track-study: reproduces thesis tables 3.1-3.3 — maximum, mean and
+// imagepro-studies track-study: reproduces thesis tables 3.1-3.3 — maximum, mean and
 // standard deviation of the absolute estimation error of the target's corners for
 // 2D-corner and 3D-parameter tracking, last 5 and 10 points, degree 0-3, over the
 // sinusoid, saw-tooth and pendulum motions of the Virtual source — checks the default
@@ -17,8 +17,10 @@
 #include "core/source/sources.h"
 #include "core/tracking/tracker.h"
 
-namespace imagepro::cli {
+namespace imagepro::studies {
 namespace {
+
+using namespace imagepro::cli;
 
 struct Measurement {
   double t = 0.0;
@@ -205,7 +207,7 @@ int run(const Args& args) {
 
   std::ostringstream md;
   md << "# Target tracking (thesis chapter 3)\n\n"
-        "Produced by `imagepro-cli track-study --frames "
+        "Produced by `imagepro-studies track-study --frames "
      << frames << " --out " << out_path
      << "` on virtual binary 640x480 frames at 25 Hz: the target 800 mm away "
         "moving along x (sinusoid and saw-tooth, the thesis's zig-zag: amplitude 150 mm, period 4 s) and a "
@@ -264,7 +266,7 @@ int run(const Args& args) {
 const CommandRegistration kRegistration{{
     "track-study",
     "reproduce thesis tables 3.1-3.3 (tracking errors) and write docs/tracking.md with a plot",
-    "usage: imagepro-cli track-study [--frames N] [--out FILE.md] [--plot FILE.png]\n\n"
+    "usage: imagepro-studies track-study [--frames N] [--out FILE.md] [--plot FILE.png]\n\n"
     "Runs the sinusoid, saw-tooth and pendulum motions of the Virtual source, replays\n"
     "the detections through every tracking strategy (2D/3D, last 5/10 points, degree\n"
     "0-3), and writes the maximum, mean and standard deviation of the corner estimation\n"
@@ -276,4 +278,4 @@ const CommandRegistration kRegistration{{
 }};
 
 }  // namespace
-}  // namespace imagepro::cli
+}  // namespace imagepro::studies

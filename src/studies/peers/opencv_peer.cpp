@@ -1,4 +1,4 @@
-#include "cli/peers/opencv_peer.h"
+#include "studies/peers/opencv_peer.h"
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-namespace imagepro::cli {
+namespace imagepro::studies {
 
 namespace {
 
@@ -92,4 +92,4 @@ Status opencvPeerPose(const cv::Mat& grey, const CameraModel& camera, const Targ
   return Status::Ok;
 }
 
-}  // namespace imagepro::cli
+}  // namespace imagepro::studies

@@ -1,4 +1,4 @@
-#include "cli/peers/apriltag_peer.h"
+#include "studies/peers/apriltag_peer.h"
 
 #include <opencv2/imgproc.hpp>
 
@@ -11,7 +11,7 @@ extern "C" {
 #include <Eigen/Core>
 #include <cstdlib>
 
-namespace imagepro::cli {
+namespace imagepro::studies {
 
 namespace {
 constexpr int kUpscale = 16;  // tag cells drawn 16x16 before warping, for clean edges
@@ -100,4 +100,4 @@ Status AprilTagPeer::detect(const cv::Mat& grey, Pose& out) {
   return status;
 }
 
-}  // namespace imagepro::cli
+}  // namespace imagepro::studies

@@ -1,0 +1,80 @@
+// imagepro-cli pendulum and two-targets as a user would run them: where they write
+// (plots only where asked, the CSV whole or not at all) and what a missing input says.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <string>
+
+#include "core/common/atomic_file.h"
+#include "support/cli_run.h"
+#include "support/test_dirs.h"
+
+namespace imagepro {
+namespace {
+
+namespace fs = std::filesystem;
+using test::cli;
+using test::CliRun;
+using test::freshDir;
+using test::lines;
+
+std::string fileText(const fs::path& path) {
+  std::string text, e;
+  EXPECT_TRUE(readWholeFile(path.string(), text, e)) << e;
+  return text;
+}
+
+TEST(CliPendulum, WritesPlotsOnlyWhereAsked) {
+  const fs::path dir = freshDir("cli_pendulum_plots");
+  CliRun r = test::runProgram(IMAGEPRO_CLI, "pendulum --virtual --frames 100 --format json", dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_empty(dir)) << "wrote into the current folder unasked";
+
+  r = test::runProgram(IMAGEPRO_CLI, "pendulum --virtual --frames 100 --plots plots", dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* name : {"pendulum-translations.png", "pendulum-rotations.png"}) {
+    EXPECT_GT(fs::file_size(dir / "plots" / name), 1000u) << name;
+    EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);  // the plots folder only
+  EXPECT_EQ(cli("pendulum --virtual --frames 100 --plot pendulum").exit_code, 2);  // the old prefix option is gone
+}
+
+TEST(CliPendulum, MissingInputNamesTheFileAndTheReason) {
+  const fs::path dir = freshDir("cli_pendulum_missing");
+  for (const std::string name : {"swing.png", "swing.csv", "frames.txt"}) {
+    const std::string path = (dir / name).string();
+    const CliRun r = cli("pendulum " + path);
+    EXPECT_EQ(r.exit_code, 1) << name;
+    ASSERT_EQ(lines(r.err).size(), 1u) << r.err;
+    EXPECT_NE(r.err.find(path + ": no such file"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("TooFewFrames"), std::string::npos) << r.err;
+  }
+}
+
+TEST(CliTwoTargets, CsvReplacesTheOldFileWhole) {
+  const fs::path dir = freshDir("cli_two_targets_csv");
+  const fs::path csv = dir / "two.csv", other_name = dir / "kept.csv";
+  std::string e;
+  ASSERT_TRUE(writeFileAtomically(csv.string(), "old content\n", e)) << e;
+  // A second name of the old file: a file truncated and written in place would change under it too.
+  fs::create_hard_link(csv, other_name);
+  const CliRun r = cli("two-targets --virtual --frames 2 --position 1 --csv " + csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = lines(fileText(csv));
+  ASSERT_EQ(rows.size(), 5u);  // header, 2 frames x 2 corrections
+  EXPECT_EQ(rows[0], "frame,position,lighting,correction,status,distance_mm,angle_deg,distance_error_mm,angle_error_deg");
+  EXPECT_EQ(rows[1].rfind("0,1,natural,on,ok,", 0), 0u) << rows[1];
+  EXPECT_EQ(fileText(other_name), "old content\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);  // no temporary file left
+
+  // A CSV that cannot be written: one line naming it, exit 1.
+  const std::string unwritable = (dir / "no-such-folder" / "two.csv").string();
+  const CliRun bad = cli("two-targets --virtual --frames 2 --position 1 --csv " + unwritable);
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find(unwritable), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace imagepro

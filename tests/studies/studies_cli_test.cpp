@@ -1,0 +1,76 @@
+// imagepro-studies run as a user would: its command list, each study's help, the
+// accuracy study's report and the peers' bench on the smallest runs.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include "core/common/atomic_file.h"
+#include "support/cli_run.h"
+#include "support/test_dirs.h"
+
+namespace imagepro {
+namespace {
+
+namespace fs = std::filesystem;
+using test::CliRun;
+using test::freshDir;
+using test::lines;
+using test::studies;
+
+TEST(Studies, OverviewListsTheStudiesAndEachHasHelp) {
+  const CliRun r = studies("--help");
+  ASSERT_EQ(r.exit_code, 0);
+  for (const char* c : {"accuracy", "calibration-study", "track-study", "bench-peers"})
+    EXPECT_NE(r.out.find(std::string("  ") + c + " "), std::string::npos) << c;
+  for (const std::string& line : lines(r.out)) {
+    if (line.rfind("  ", 0) != 0) continue;
+    const std::string name = line.substr(2, line.find(' ', 2) - 2);
+    const CliRun help = studies(name + " --help");
+    EXPECT_EQ(help.exit_code, 0) << name;
+    EXPECT_NE(help.out.find("usage: imagepro-studies " + name), std::string::npos) << name;
+  }
+  const CliRun unknown = studies("reconstruct");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("imagepro-studies: unknown command \"reconstruct\""), std::string::npos) << unknown.err;
+}
+
+// The accuracy study end to end on the smallest run: a complete report that names the
+// command regenerating it.
+TEST(Studies, AccuracySmokeRunWritesItsReport) {
+  const fs::path dir = freshDir("studies_accuracy");
+  const fs::path out = dir / "accuracy.md";
+  const CliRun r = studies("accuracy --frames 2 --seed 3 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string md, e;
+  ASSERT_TRUE(readWholeFile(out.string(), md, e)) << e;
+  EXPECT_EQ(md.rfind("# Accuracy\n", 0), 0u);
+  for (const char* part :
+       {"`imagepro-studies accuracy --frames 2 --seed 3`", "## Goals (issue 4)", "| detection, whole target visible |",
+        "The same goals per tilt band", "## No lens distortion", "## Thesis camera's lens distortion, corrected",
+        "| sub-pixel | 2 |", "| ArUco 4x4 (IPPE) | 2 |", "## The plane normal", "## Lens distortion correction",
+        "| thesis camera x 1.0 |"})
+    EXPECT_NE(md.find(part), std::string::npos) << part;
+  EXPECT_EQ(md.find("nan"), std::string::npos);
+  const CliRun bad = studies("accuracy --frames 0");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("imagepro-studies accuracy: "), std::string::npos) << bad.err;
+}
+
+// The peers on the same frames as the engine: every method finds the target in every
+// frame of the bench scene, and the report carries each one's rate.
+TEST(Studies, BenchPeersTimesTheEngineAndBothPeers) {
+  const CliRun r = studies("bench-peers --frames 10 --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"full_frame_hz", "tracked_hz", "opencv_pipeline_hz", "apriltag_hz"})
+    EXPECT_GT(j.at(key).get<double>(), 0.0) << key;
+  const auto& res = j.at("resolutions").at(0);
+  for (const char* key : {"full_frame_found", "tracked_found", "opencv_pipeline_found", "apriltag_found"})
+    EXPECT_EQ(res.at(key).get<int>(), 10) << key;
+  EXPECT_EQ(studies("bench-peers --frames 3").exit_code, 2);
+}
+
+}  // namespace
+}  // namespace imagepro
