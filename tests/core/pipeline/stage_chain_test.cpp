@@ -1,0 +1,130 @@
+#include "core/pipeline/stage_chain.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "core/source/virtual_renderer.h"
+
+namespace imagepro {
+namespace {
+
+// A grey virtual frame of the target at `pose`.
+cv::Mat render(const Settings& s, const Pose& pose) {
+  cv::Mat image;
+  renderTarget(s.camera, s.target, s.virtual_scene, pose, image);
+  return image;
+}
+
+double rotationErrorDeg(const Pose& a, const Pose& b) {
+  return rotationAngleBetweenDeg(rotationMatrix(a), rotationMatrix(b));
+}
+
+// The target in the shade on the left, a bright window filling the right half: the global
+// threshold separates the window from the room and the target's disk, dimmer than the
+// threshold, is lost with the room; the local second pass finds it.
+TEST(StageChain, FindsATargetInTheShadeBesideABrightWindow) {
+  Settings s;
+  s.virtual_scene.noise_sigma = 2.0;
+  s.virtual_scene.blur_sigma_px = 0.7;
+  const Pose truth{20, -15, 30, -120, 10, 900};
+  cv::Mat grey = render(s, truth);
+  grey.convertTo(grey, CV_8UC1, 0.3);                             // the room in the shade
+  grey(cv::Rect(400, 0, 240, 480)).setTo(250);                    // the window
+  cv::GaussianBlur(grey, grey, cv::Size(3, 3), 0.6);
+
+  StageChain chain;
+  FrameResult global, local;
+  Settings thesis = s;
+  thesis.pipeline.binarization.mode = Binarization::Global;
+  runStageChain(thesis, grey, {}, TargetsToReconstruct::Best, chain, global);
+  EXPECT_FALSE(ok(global.status)) << "the global threshold alone should miss this target";
+
+  runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, local);
+  ASSERT_EQ(local.status, Status::Ok) << statusName(local.status);
+  ASSERT_TRUE(local.pose.has_value());
+  EXPECT_LT(rotationErrorDeg(truth, *local.pose), 1.0);
+  EXPECT_LT((translation(truth) - translation(*local.pose)).norm(), 0.005 * truth.tz_mm);
+  EXPECT_EQ(local.threshold, global.threshold);  // the frame's threshold is still reported
+  // The local pass's buffers are the ones kept: its edges lie on the found target.
+  EXPECT_TRUE(cv::Rect(0, 0, 640, 480).contains(local.detected_region.tl()));
+  EXPECT_GT(local.times[Stage::Threshold], 0.0);
+}
+
+// On a clean frame the thesis's threshold finds the target and no second pass runs: the
+// default gives exactly the global mode's result.
+TEST(StageChain, CleanFramesKeepTheThesisResult) {
+  Settings s;
+  const Pose truth{10, 25, -60, 40, -30, 700};
+  const cv::Mat grey = render(s, truth);
+  Settings thesis = s;
+  thesis.pipeline.binarization.mode = Binarization::Global;
+  StageChain chain;
+  FrameResult a, b;
+  runStageChain(thesis, grey, {}, TargetsToReconstruct::Best, chain, a);
+  runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, b);
+  ASSERT_EQ(a.status, Status::Ok);
+  ASSERT_EQ(b.status, Status::Ok);
+  EXPECT_EQ(a.edge_pixels, b.edge_pixels);
+  EXPECT_EQ(a.pose->rx_deg, b.pose->rx_deg);
+  EXPECT_EQ(a.pose->tz_mm, b.pose->tz_mm);
+}
+
+// A frame without a target misses in both passes: the first pass's report stands.
+TEST(StageChain, ADoubleMissReportsTheFirstPass) {
+  Settings s;
+  cv::Mat grey(480, 640, CV_8UC1, cv::Scalar(90));
+  cv::rectangle(grey, cv::Rect(100, 100, 200, 120), cv::Scalar(200), cv::FILLED);
+  StageChain chain;
+  FrameResult global, both;
+  Settings thesis = s;
+  thesis.pipeline.binarization.mode = Binarization::Global;
+  runStageChain(thesis, grey, {}, TargetsToReconstruct::Best, chain, global);
+  runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, both);
+  EXPECT_FALSE(ok(global.status));
+  EXPECT_EQ(both.status, global.status);
+  EXPECT_EQ(both.edge_pixels, global.edge_pixels);
+  EXPECT_EQ(chain.edges.size(), global.edge_pixels);  // the buffers are the first pass's again
+  EXPECT_FALSE(both.pose.has_value());
+}
+
+// The chain stops after the application level; the local pass never runs for a stage
+// that cannot miss the target.
+TEST(StageChain, StopsAtTheApplicationLevel) {
+  Settings s;
+  s.pipeline.level = ApplicationLevel::Connectivity;
+  const cv::Mat grey = render(s, Pose{0, 0, 0, 0, 0, 800});
+  StageChain chain;
+  FrameResult r;
+  runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, r);
+  EXPECT_EQ(r.status, Status::Ok);
+  EXPECT_EQ(r.reached, ApplicationLevel::Connectivity);
+  EXPECT_GE(chain.paths.pathCount(), 3u);
+  EXPECT_TRUE(r.targets.empty());
+  EXPECT_EQ(r.times[Stage::Ellipse], 0.0);
+}
+
+// Every target of the frame reconstructed, each with its own status and pose.
+TEST(StageChain, EveryTargetGetsItsOwnPose) {
+  Settings s;
+  const Pose left{0, 20, 0, -150, 0, 900}, right{0, -20, 0, 150, 0, 900};
+  cv::Mat a = render(s, left), b = render(s, right);
+  cv::Mat grey = a.clone();
+  b(cv::Rect(320, 0, 320, 480)).copyTo(grey(cv::Rect(320, 0, 320, 480)));
+  StageChain chain;
+  FrameResult r;
+  runStageChain(s, grey, {}, TargetsToReconstruct::Every, chain, r);
+  ASSERT_EQ(r.status, Status::Ok) << statusName(r.status);
+  ASSERT_EQ(r.targets.size(), 2u);
+  for (const TargetSummary& t : r.targets) {
+    ASSERT_EQ(t.status, Status::Ok);
+    ASSERT_TRUE(t.pose.has_value());
+    const Pose& truth = t.pose->tx_mm < 0 ? left : right;
+    EXPECT_LT(rotationErrorDeg(truth, *t.pose), 1.0);
+  }
+  // The best-target run of the same frame calls it ambiguous.
+  runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, r);
+  EXPECT_EQ(r.status, Status::AmbiguousTarget);
+}
+
+}  // namespace
+}  // namespace imagepro
