@@ -18,6 +18,15 @@ QString methodToolTip(ThresholdMethod m) {
   return {};
 }
 
+QString methodToolTip(Binarization m) {
+  switch (m) {
+    case Binarization::Global: return tr("Global: one threshold for the whole searched region, the method above (thesis 2.3)");
+    case Binarization::Local: return tr("Local: each pixel against the mean of its window; black where clearly darker than its surroundings (uneven light)");
+    case Binarization::GlobalThenLocal: return tr("Global, then local: the thesis's threshold, and when that misses the target a second pass on the local binary image");
+  }
+  return {};
+}
+
 QString methodToolTip(EdgeMethod m) {
   switch (m) {
     case EdgeMethod::SobelThinning: return tr("Sobel + thinning: every pixel with a non-zero Sobel gradient, then the three-pixel thinning; the earlier method, kept for comparison (thesis 2.4.1-2.4.2, eq. 2.21)");

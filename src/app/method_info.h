@@ -8,6 +8,7 @@
 namespace imagepro::app {
 
 QString methodToolTip(ThresholdMethod m);
+QString methodToolTip(Binarization m);
 QString methodToolTip(EdgeMethod m);
 QString methodToolTip(ConnectivityMethod m);
 QString methodToolTip(EllipseMethod m);

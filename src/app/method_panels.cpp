@@ -42,8 +42,33 @@ QWidget* single(QWidget* w) {
 }  // namespace
 
 QWidget* thresholdPanel(SettingsBinder& binder) {
-  return thresholdControls(binder, [](Settings& s) -> ThresholdOptions& { return s.pipeline.threshold; }, false,
-                           "threshold");
+  auto* box = new QWidget;
+  auto* layout = new QVBoxLayout(box);
+  layout->setContentsMargins(0, 0, 0, 0);
+  layout->addWidget(thresholdControls(binder, [](Settings& s) -> ThresholdOptions& { return s.pipeline.threshold; }, false,
+                                      "threshold"));
+  // How the region is binarized with it (beyond the thesis: uneven light).
+  auto* form = new QFormLayout;
+  form->setContentsMargins(0, 0, 0, 0);
+  auto b = [](Settings& s) -> BinarizationOptions& { return s.pipeline.binarization; };
+  form->addRow(QObject::tr("Binarization"),
+               named(binder.combo<Binarization>([b](Settings& s) -> auto& { return b(s).mode; }), "binarizationMode"));
+  auto* window = named(binder.intSpin([b](Settings& s) -> auto& { return b(s).window_px; }, 0, 4095, QStringLiteral(" px")),
+                       "localWindow", QObject::tr("Side of the local window; 0: a sixteenth of the image width"));
+  auto* offset = named(binder.doubleSpin([b](Settings& s) -> auto& { return b(s).offset; }, 0.0, 1.0, 2),
+                       "localOffset", QObject::tr("Black: darker than the window's mean by more than this fraction of it ..."));
+  auto* contrast = named(binder.intSpin([b](Settings& s) -> auto& { return b(s).min_contrast; }, 0, 255),
+                         "localMinContrast", QObject::tr("... and by more than this many grey levels"));
+  form->addRow(QObject::tr("Window"), window);
+  form->addRow(QObject::tr("Offset"), offset);
+  form->addRow(QObject::tr("Min contrast"), contrast);
+  layout->addLayout(form);
+  binder.onAnyUpdate([&binder, window, offset, contrast] {
+    const bool local = binder.model().pipeline.binarization.mode != Binarization::Global;
+    for (QWidget* w : {static_cast<QWidget*>(window), static_cast<QWidget*>(offset), static_cast<QWidget*>(contrast)})
+      w->setEnabled(local);
+  });
+  return box;
 }
 
 QWidget* rethresholdPanel(SettingsBinder& binder) {
@@ -169,6 +194,13 @@ QWidget* reconstructionPanel(SettingsBinder& binder) {
                      "centreSpotNormal", QObject::tr("Weigh the centre spot's polar line into the target plane's normal (most gain seen head-on)")));
   form->addRow(QObject::tr("Crop margin"), named(binder.intSpin([r](Settings& s) -> auto& { return r(s).crop_margin_px; }, 0, 1000, QStringLiteral(" px")),
                                                  "cropMargin", QObject::tr("Pixels added around the detected target before re-thresholding")));
+  // The self-check and the choice between the rim's two circles (docs/reconstruction.md).
+  form->addRow(QObject::tr("Max spot error"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).max_spot_error_px; }, 0.0, 1000.0, 2, QStringLiteral(" px")),
+                                                    "maxSpotError", QObject::tr("PoseInconsistent when the pose puts a spot further than this from where it was found")));
+  form->addRow(QObject::tr("Max rim error"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).max_rim_error_px; }, 0.0, 1000.0, 2, QStringLiteral(" px")),
+                                                   "maxRimError", QObject::tr("PoseInconsistent when the pose's rim lies further (RMS) than this from the contour points")));
+  form->addRow(QObject::tr("Ambiguity ratio"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).ambiguity_ratio; }, 1.0, 1000.0, 2),
+                                                     "ambiguityRatio", QObject::tr("AmbiguousPose unless one of the rim's two poses fits the spots this many times better")));
   binder.onAnyUpdate([&binder, exact] { exact->setEnabled(binder.model().pipeline.reconstruction.distortion_correction); });
   return box;
 }

@@ -218,7 +218,7 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
   if (ok(out.status)) reconstructTargets(settings, grey, which, chain, out, expected);
   if (o.binarization.mode == Binarization::GlobalThenLocal && missed(out, which)) {
     // Threshold cycling on a miss: the second pass, on the local binary image, into the
-    // spare buffers; the first pass's report is restored if this one misses too.
+    // spare buffers.
     const PassOutcome first = outcome(out);
     swapPasses(chain, out);
     start = Clock::now();
@@ -228,7 +228,9 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
     out.ambiguous_poses.reset();
     findTargets(settings, grey, inside, which, chain, out);
     if (ok(out.status)) reconstructTargets(settings, grey, which, chain, out, expected);
-    if (missed(out, which)) {
+    // Both missed: the report of the pass that got further (its status says more), the
+    // first on a tie.
+    if (missed(out, which) && static_cast<int>(out.reached) <= static_cast<int>(first.reached)) {
       swapPasses(chain, out);
       restore(first, out);
     }

@@ -2,16 +2,16 @@
 // The detector's stage chain, written once (thesis figure 5.1 from the histogram to the
 // pose): histogram of the searched region -> threshold -> edges -> connectivity ->
 // ellipse detection -> crop target + re-threshold, features, distortion correction,
-// analytic pose.
-//
-// Binarization (pipeline.binarization): the thesis's one threshold, a local threshold
-// (local_threshold.h), or the first and, when its ellipse stage finds no target holding
-// its two spots, the second: edges, paths and ellipses are then found once more on the
-// local binary image, and its result is kept when it holds the target's spots, or when
-// the first pass found nothing at all. The engine runs it inside its frame loop (with the tracker around it);
+// analytic pose. The engine runs it inside its frame loop (with the tracker around it);
 // the multi-target study and the CLI's detect, edges and threshold commands run it on
 // stills and read the intermediate buffers it keeps. A detector stage is added here
 // and nowhere else.
+//
+// Binarization (pipeline.binarization): the thesis's one threshold, a local threshold
+// (local_threshold.h), or the first and, when its pass misses the target (no target, or
+// a reconstruction that fails), the second: edges, paths, ellipses and the pose are then
+// found once more on the local binary image, and that pass is kept when it finds the
+// target, or, when both miss, when it got further through the stages.
 //
 // The chain stops after the settings' application level. Nothing here throws: every
 // outcome is a Status in the FrameResult.

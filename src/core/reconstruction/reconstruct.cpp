@@ -48,9 +48,10 @@ double sumOfSquares(const std::array<double, 2>& e) { return e[0] * e[0] + e[1] 
 
 // Of the rim's two circles (out.candidates, centre-nearest first), keeps the one that
 // reprojects the spots better when the spots tell them apart, else the one nearer
-// `expected`, else reports AmbiguousPose; then checks the kept pose against the image.
-// The spots are compared by the sum of their squared errors: the offset spot's radial
-// error and the centre spot's both tell the circles apart.
+// `expected`, else reports AmbiguousPose. The spots are compared by the sum of their
+// squared errors: the offset spot's radial error and the centre spot's both tell the
+// circles apart. A kept pose (or the better of two ambiguous ones) that does not fit the
+// image is PoseInconsistent: a doubt between two poses of which neither fits is no doubt.
 Status choosePose(const ReconstructionConfig& config, const Pose* expected, ReconstructionResult& out) {
   const ReconstructionOptions& o = config.options;
   PoseCandidates& c = out.candidates;
@@ -60,13 +61,15 @@ Status choosePose(const ReconstructionConfig& config, const Pose* expected, Reco
     std::swap(c.spot_errors_px[0], c.spot_errors_px[1]);
   };
   if (ok(c.status[1]) && sumOfSquares(c.spot_errors_px[1]) < sumOfSquares(c.spot_errors_px[0])) swapCandidates();
+  bool ambiguous = false;
   if (ok(c.status[1]) && normalsApartDeg(c.pose[0], c.pose[1]) > o.ambiguity_min_deg) {
     const double best = sumOfSquares(c.spot_errors_px[0]), other = sumOfSquares(c.spot_errors_px[1]);
     const double needed =
         std::max(o.ambiguity_margin_px * o.ambiguity_margin_px, (o.ambiguity_ratio * o.ambiguity_ratio - 1.0) * best);
     if (!(other - best > needed)) {
-      if (!expected) return Status::AmbiguousPose;
-      if (rotationBetweenDeg(c.pose[1], *expected) < rotationBetweenDeg(c.pose[0], *expected)) swapCandidates();
+      ambiguous = expected == nullptr;
+      if (expected && rotationBetweenDeg(c.pose[1], *expected) < rotationBetweenDeg(c.pose[0], *expected))
+        swapCandidates();
     }
   }
   out.pose = c.pose[0];
@@ -74,7 +77,7 @@ Status choosePose(const ReconstructionConfig& config, const Pose* expected, Reco
   out.rim_error_px = rimReprojectionError(config.camera, config.target, out.pose, out.contour_ideal);
   if (out.spot_error_px > o.max_spot_error_px || out.rim_error_px > o.max_rim_error_px)
     return Status::PoseInconsistent;
-  return Status::Ok;
+  return ambiguous ? Status::AmbiguousPose : Status::Ok;
 }
 
 }  // namespace

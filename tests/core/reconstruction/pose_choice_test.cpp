@@ -1,0 +1,119 @@
+// The choice between the rim's two circles and the self-check of the pose
+// (reconstruct.h, ReconstructionOptions): a far, blurred, noisy target is either solved
+// right or called AmbiguousPose with the right pose among its candidates, never a flipped
+// ok; a tracked stream's last pose decides; a moved spot is refused as PoseInconsistent.
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include <random>
+
+#include "core/reconstruction/reconstruct.h"
+#include "core/source/virtual_renderer.h"
+#include "test_scenes.h"
+
+namespace imagepro {
+namespace {
+
+using testing::makePose;
+using testing::rotationErrorDeg;
+using testing::seenRimEllipse;
+
+struct PoseChoiceTest : ::testing::Test {
+  Settings settings;
+  ReconstructionWorkspace ws;
+  ReconstructionResult result;
+  cv::Mat image;
+
+  void SetUp() override {
+    settings.virtual_scene.blur_sigma_px = 1.2;
+    settings.virtual_scene.noise_sigma = 4.0;
+  }
+  Status run(const Pose& pose, std::uint64_t seed, const Pose* expected = nullptr) {
+    renderTarget(settings.camera, settings.target, settings.virtual_scene, pose, image, seed);
+    return reconstructTarget(reconstructionConfig(settings), image, seenRimEllipse(settings.camera, settings.target, pose),
+                             128, ws, result, expected);
+  }
+  // Far targets (2.2-2.4 m, rim radius about 17 px) tilted 15-50 deg: where the spots' few
+  // pixels tell the two circles apart least surely.
+  std::vector<Pose> farPoses() {
+    std::vector<Pose> poses;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> z(2200, 2400), tilt(15, 50), rz(-180, 180), u(150, 490), v(120, 360);
+    for (int i = 0; i < 40; ++i) poses.push_back(makePose(settings.camera, z(rng), tilt(rng), rz(rng), rz(rng), u(rng), v(rng)));
+    return poses;
+  }
+};
+
+TEST_F(PoseChoiceTest, FarTargetsAreSolvedRightOrCalledAmbiguousNeverFlipped) {
+  int solved = 0, ambiguous = 0;
+  std::uint64_t seed = 0;
+  for (const Pose& truth : farPoses()) {
+    const Status s = run(truth, ++seed);
+    if (s == Status::Ok) {
+      ++solved;
+      EXPECT_LT(rotationErrorDeg(truth, result.pose), 5.0) << "an ok pose must not be flipped";
+    } else if (s == Status::AmbiguousPose) {
+      ++ambiguous;
+      const double nearest = std::min(rotationErrorDeg(truth, result.candidates.pose[0]),
+                                      rotationErrorDeg(truth, result.candidates.pose[1]));
+      EXPECT_LT(nearest, 5.0) << "one of the candidates is the target's pose";
+    }
+  }
+  std::printf("far targets: %d solved, %d ambiguous of 40\n", solved, ambiguous);
+  EXPECT_GE(solved, 20);
+}
+
+// Nothing in the spots to go by (every pair of distinct circles called ambiguous): the
+// last pose of a tracked stream, a few degrees off, picks the right one every time.
+TEST_F(PoseChoiceTest, TheLastPoseDecidesWhenTheSpotsCannot) {
+  settings.pipeline.reconstruction.ambiguity_ratio = 1e6;
+  std::uint64_t seed = 100;
+  int decided = 0;
+  for (const Pose& truth : farPoses()) {
+    if (run(truth, ++seed) != Status::AmbiguousPose) continue;
+    Pose last = truth;
+    last.rx_deg += 3.0;
+    last.rz_deg -= 2.0;
+    ASSERT_EQ(run(truth, seed, &last), Status::Ok);
+    EXPECT_LT(rotationErrorDeg(truth, result.pose), 5.0);
+    ++decided;
+  }
+  EXPECT_GE(decided, 30);
+}
+
+// The two candidates' normals closer than ambiguity_min_deg: either is as good, no doubt
+// is reported (a target seen head-on is not ambiguous).
+TEST_F(PoseChoiceTest, NearlyEqualCandidatesAreNotAmbiguous) {
+  settings.pipeline.reconstruction.ambiguity_ratio = 1e6;
+  settings.virtual_scene.blur_sigma_px = 0.0;
+  settings.virtual_scene.noise_sigma = 0.0;
+  const Pose truth = makePose(settings.camera, 600, 0.5, 20, 30, 320, 240);
+  ASSERT_EQ(run(truth, 1), Status::Ok);
+  EXPECT_LT(rotationErrorDeg(truth, result.pose), 1.0);
+}
+
+// A centre spot moved on the disk by a fifth of its radius: the pose it gives cannot put
+// the spots and the rim where they are, and the self-check says so.
+TEST_F(PoseChoiceTest, AMovedSpotIsRefusedAsInconsistent) {
+  settings.virtual_scene.blur_sigma_px = 0.0;
+  settings.virtual_scene.noise_sigma = 0.0;
+  const Pose truth = makePose(settings.camera, 700, 30, 40, 60, 320, 240);
+  ASSERT_EQ(run(truth, 1), Status::Ok);
+  EXPECT_LT(result.spot_error_px, 0.2);
+  EXPECT_LT(result.rim_error_px, 0.2);
+  const Ellipse rim = seenRimEllipse(settings.camera, settings.target, truth);
+  const cv::Point2d centre = {result.spots.centre_spot.x(), result.spots.centre_spot.y()};
+  const double spot_px = settings.target.spot_radius_mm / settings.target.radius_mm * rim.b;
+  // Paint the spot over with the disk's white and draw it again 0.2 R further along -X.
+  cv::circle(image, centre, static_cast<int>(spot_px + 3), cv::Scalar(settings.virtual_scene.white_level), cv::FILLED);
+  const cv::Point2d offset = {result.spots.offset_spot.x() - centre.x, result.spots.offset_spot.y() - centre.y};
+  const cv::Point2d moved = centre - offset * (0.2 * settings.target.radius_mm / settings.target.spot_offset_mm);
+  cv::circle(image, moved, static_cast<int>(spot_px), cv::Scalar(settings.virtual_scene.black_level), cv::FILLED,
+             cv::LINE_AA);
+  const Status s = reconstructTarget(reconstructionConfig(settings), image, rim, 128, ws, result);
+  EXPECT_EQ(s, Status::PoseInconsistent) << result.spot_error_px << " px spots";
+  EXPECT_GT(result.spot_error_px, settings.pipeline.reconstruction.max_spot_error_px);
+}
+
+}  // namespace
+}  // namespace imagepro
