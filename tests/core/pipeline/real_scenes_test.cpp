@@ -134,18 +134,20 @@ TEST(RealScenes, DefaultPipelineOnPhotographs) {
               "reappears (-1: never)\n",
               video.hiddenEnd() - video.hiddenBegin(), found_in_hiding, reacquired_after);
 
-  // Measured at the time of writing (docs/accuracy.md): stills 47 of 120 posed, 44
-  // correct, 3 off by more than 5 deg, rotation median 0.344 deg, position median
-  // 0.102 %; no false detection in 30 negatives; video 66 of 138 visible frames
-  // correct, none wrong, none in hiding, the target found again 1 frame after it
-  // reappears. The floors leave a few frames for OpenCV's filters rounding differently
-  // on other processors (a grey level here and there moves a borderline frame).
-  EXPECT_GE(stills.correct, 42);
+  // Measured (docs/accuracy.md): stills 104 of 120 posed, 101 correct, 3 off by 5-11 deg
+  // (far targets, normal noise, not flips), 9 AmbiguousPose, rotation median 0.31 deg,
+  // p95 2.1 deg, position median 0.11 %; no false detection in 30 negatives; video 138 of
+  // 138 visible frames correct, none in hiding, found again on the frame it reappears.
+  // (With the thesis's global threshold alone: 44 correct stills, 66 video frames.) The
+  // floors leave a few frames for OpenCV's filters rounding differently on other
+  // processors (a grey level here and there moves a borderline frame).
+  EXPECT_GE(stills.correct, 97);
   EXPECT_LE(stills.wrong, 4);
   EXPECT_LE(percentile(stills.rotation_deg, 0.5), 0.4);
+  EXPECT_LE(percentile(stills.rotation_deg, 0.95), 3.0);
   EXPECT_LE(percentile(stills.position_percent, 0.5), 0.15);
   EXPECT_EQ(false_detections, 0);
-  EXPECT_GE(visible.correct, 62);
+  EXPECT_GE(visible.correct, 134);
   EXPECT_LE(visible.wrong, 1);
   EXPECT_EQ(found_in_hiding, 0);
   EXPECT_GE(reacquired_after, 0);
