@@ -12,6 +12,7 @@
 #endif
 
 #include "core/common/simd_level.h"
+#include "core/reconstruction/spot_model.h"
 
 #include "core/segmentation/image_buffer.h"
 #include "core/segmentation/threshold.h"
@@ -807,7 +808,15 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
     ++accepted;
   }
   spots.candidates = accepted;
-  if (accepted < 2) return Status::SpotsNotFound;
+  if (accepted < 2) {
+    // Too small or faint to be cut at the mid level: where the geometry puts them.
+    std::array<cv::Rect, 2> boxes;
+    if (!spotBoxesByModel(grey, detected, target, bright, ws.dark_mean, boxes)) return Status::SpotsNotFound;
+    for (int k = 0; k < 2; ++k)
+      kept[k] = {boxes[k].area(), boxes[k].x - crop.x, boxes[k].y - crop.y, boxes[k].x + boxes[k].width - 1 - crop.x,
+                 boxes[k].y + boxes[k].height - 1 - crop.y};
+    accepted = 2;
+  }
   if (accepted > 2) return Status::AmbiguousSpots;
 
   // Darkness-weighted centroids over each box grown by a few pixels, leaving out what lies

@@ -1,7 +1,10 @@
 #include "core/pipeline/stage_chain.h"
 
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include <vector>
 
 #include "core/source/virtual_renderer.h"
 
@@ -124,6 +127,39 @@ TEST(StageChain, EveryTargetGetsItsOwnPose) {
   // The best-target run of the same frame calls it ambiguous.
   runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, r);
   EXPECT_EQ(r.status, Status::AmbiguousTarget);
+}
+
+// Spots 2 px across at 2.5 m (a 3.2 mm spot radius seen by the default camera), blurred,
+// noisy and JPEG-compressed, are found: the frame gets a pose (or, far and tilted, the
+// named doubt between its two poses), never SpotsNotFound.
+TEST(StageChain, FindsSpotsTwoPixelsAcrossAtTwoAndAHalfMetres) {
+  Settings s;
+  s.target.spot_radius_mm = 3.2;
+  s.virtual_scene.blur_sigma_px = 0.8;
+  s.virtual_scene.noise_sigma = 2.0;
+  const double spot_px = 2.0 * s.target.spot_radius_mm * s.camera.fu() / 2500.0;
+  ASSERT_LT(spot_px, 2.1);
+  const Pose poses[] = {{20, -10, 30, 50, -40, 2500}, {-15, 25, -120, -200, 100, 2500}, {5, 5, 170, 150, 120, 2500},
+                        {30, 0, 60, 0, 0, 2500},      {0, -30, -60, -100, -150, 2500}};
+  StageChain chain;
+  FrameResult r;
+  int posed = 0;
+  for (const Pose& truth : poses) {
+    cv::Mat grey = render(s, truth);
+    std::vector<std::uint8_t> jpeg;
+    ASSERT_TRUE(cv::imencode(".jpg", grey, jpeg, {cv::IMWRITE_JPEG_QUALITY, 75}));
+    grey = cv::imdecode(jpeg, cv::IMREAD_GRAYSCALE);
+    runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, r);
+    EXPECT_TRUE(r.status == Status::Ok || r.status == Status::AmbiguousPose) << statusName(r.status);
+    if (!r.pose) continue;
+    ++posed;
+    EXPECT_LT(rotationErrorDeg(truth, *r.pose), 5.0);
+    EXPECT_LT((translation(truth) - translation(*r.pose)).norm(), 0.005 * truth.tz_mm);
+  }
+  // Measured: 3 poses within 3.3 deg, 2 AmbiguousPose (at 2.5 m the spots of a target
+  // tilted 20-30 deg may not tell its two poses apart). Without the model-guided search
+  // all five were SpotsNotFound.
+  EXPECT_GE(posed, 3);
 }
 
 }  // namespace

@@ -1,0 +1,52 @@
+#include "core/reconstruction/spot_model.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+namespace imagepro {
+namespace {
+
+// A disk seen head-on: rim radius 20 px, spots of 1 px radius at the centre and 10 px to
+// the right of it, blurred so that neither gets as dark as the mid grey level.
+struct SmallTarget {
+  TargetGeometry target{50.0, 2.5, 25.0};
+  Ellipse rim{60.0, 50.0, 20.0, 20.0, 0.0};
+  cv::Mat grey{100, 120, CV_8UC1, cv::Scalar(20)};
+  SmallTarget() {
+    cv::circle(grey, {60, 50}, 20, cv::Scalar(200), cv::FILLED);
+    cv::circle(grey, {60, 50}, 1, cv::Scalar(20), cv::FILLED);
+    cv::circle(grey, {70, 50}, 1, cv::Scalar(20), cv::FILLED);
+    cv::GaussianBlur(grey, grey, cv::Size(7, 7), 1.4);
+  }
+};
+
+TEST(SpotModel, FindsFaintSpotsWhereTheGeometryPutsThem) {
+  SmallTarget t;
+  ASSERT_GT(t.grey.at<std::uint8_t>(50, 60), 110) << "the spot is fainter than the mid level";
+  std::array<cv::Rect, 2> boxes;
+  ASSERT_TRUE(spotBoxesByModel(t.grey, t.rim, t.target, 200, 20, boxes));
+  EXPECT_TRUE(boxes[0].contains({60, 50})) << boxes[0];
+  EXPECT_TRUE(boxes[1].contains({70, 50})) << boxes[1];
+}
+
+TEST(SpotModel, ADiskWithoutSpotsHasNone) {
+  SmallTarget t;
+  cv::Mat plain(100, 120, CV_8UC1, cv::Scalar(20));
+  cv::circle(plain, {60, 50}, 20, cv::Scalar(200), cv::FILLED);
+  std::array<cv::Rect, 2> boxes;
+  EXPECT_FALSE(spotBoxesByModel(plain, t.rim, t.target, 200, 20, boxes));
+  // Only the centre spot: no offset spot, no pair.
+  cv::circle(plain, {60, 50}, 1, cv::Scalar(20), cv::FILLED);
+  EXPECT_FALSE(spotBoxesByModel(plain, t.rim, t.target, 200, 20, boxes));
+}
+
+TEST(SpotModel, BadInputIsNoSpots) {
+  SmallTarget t;
+  std::array<cv::Rect, 2> boxes;
+  EXPECT_FALSE(spotBoxesByModel(cv::Mat(), t.rim, t.target, 200, 20, boxes));
+  EXPECT_FALSE(spotBoxesByModel(t.grey, Ellipse{}, t.target, 200, 20, boxes));
+  EXPECT_FALSE(spotBoxesByModel(t.grey, t.rim, t.target, 20, 200, boxes));  // no contrast
+}
+
+}  // namespace
+}  // namespace imagepro
