@@ -396,6 +396,14 @@ Status fitEllipseRobust(const EllipseOptions& o, std::span<const EdgePixel> path
   return fitAccepted(o, fit, trace, o.robust_min_traced_fraction) ? Status::Ok : Status::NotAnEllipse;
 }
 
+bool plausibleTargetView(const EllipseOptions& o, const Ellipse& e, cv::Size image) {
+  // A circle tilted by t from the line of sight is seen as an ellipse of axis ratio about
+  // cos t (exactly so far from the camera; perspective only rounds it).
+  if (!(e.a > 0.0) || e.b < std::cos(o.target_max_tilt_deg * M_PI / 180.0) * e.a) return false;
+  if (image.empty()) return true;
+  return e.cx >= 0.0 && e.cy >= 0.0 && e.cx <= image.width - 1.0 && e.cy <= image.height - 1.0;
+}
+
 Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Paths& paths, cv::Size image,
                     EllipseWorkspace& ws, std::vector<TargetDetection>& out) {
   out.clear();
@@ -420,6 +428,7 @@ Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Path
     if (!out.empty() && !mayHoldSpots(g, i, ws, out)) continue;
     fitPath(o, paths, i, image, ws);
     if (!(s.accepted || s.candidate)) continue;
+    if (!plausibleTargetView(o, s.fit.ellipse, image)) continue;
     if (!findSpots(o, g, s.fit.ellipse, i, ws, spots)) continue;
     if (!traceCandidate(o, paths.path(i), image, s)) continue;
     TargetDetection d = toDetection(s, i);
@@ -438,6 +447,7 @@ Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Path
       EllipseFit fit;
       EllipseTrace trace;
       if (!ok(robustTarget(o, paths, i, image, ws, fit, trace))) continue;
+      if (!plausibleTargetView(o, fit.ellipse, image)) continue;
       if (!findSpots(o, g, fit.ellipse, i, ws, spots)) continue;
       // The same spots as a target found already: the same target.
       const bool seen = std::any_of(out.begin(), out.end(), [&](const TargetDetection& d) {
@@ -471,6 +481,7 @@ Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Path
     if (!(s.polarity < 0.0)) continue;
     fitPath(o, paths, i, image, ws);
     if (!traceCandidate(o, paths.path(i), image, s)) continue;
+    if (!plausibleTargetView(o, s.fit.ellipse, image)) continue;
     const bool holds = holdsDarkPath(s.fit.ellipse, i, ws);
     double key;
     if (o.method == EllipseMethod::Bennett) key = -s.bennett.score;

@@ -112,6 +112,12 @@ Status detectTarget(const EllipseOptions& options, const TargetGeometry& target,
 Status fitEllipseRobust(const EllipseOptions& options, std::span<const EdgePixel> path, cv::Size image,
                         EllipseWorkspace& ws, EllipseFit& fit, EllipseTrace& trace);
 
+// Whether a view of the target can give `e`: an axis ratio a tilt of at most
+// o.target_max_tilt_deg gives, its centre inside the image (when `image` is not empty).
+// Target selection, with or without spots, takes only these, so a sliver along a table's
+// edge or an arc of a ring centred off the frame is no target.
+bool plausibleTargetView(const EllipseOptions& o, const Ellipse& e, cv::Size image);
+
 // The accept rule of the direct fit on a fit and its trace.
 bool fitAccepted(const EllipseOptions& options, const EllipseFit& fit, const EllipseTrace& trace,
                  double min_traced_fraction);

@@ -119,6 +119,9 @@ struct EllipseOptions {
   int bennett_max_points = 256;               // longer paths are subsampled (0: never)
   // Target selection: spot positions may deviate by this fraction of the disk radius.
   double target_spot_tolerance = 0.2;
+  // A plain ellipse chosen as the target must be a view of a circle tilted at most this
+  // far, its centre inside the image (plausibleTargetView).
+  double target_max_tilt_deg = 80.0;
   // NoTarget unless an ellipse holds the target's two spots (otherwise the best ellipse).
   bool require_target_spots = false;
   // Report every target found instead of failing with AmbiguousTarget.

@@ -129,6 +129,7 @@ void visitSettings(Visitor& v, Settings& s) {
       v.field("bennett_min_peak_fraction", e.bennett_min_peak_fraction, 0.0, 1.0);
       v.field("bennett_max_points", e.bennett_max_points, 0, 100000);
       v.field("target_spot_tolerance", e.target_spot_tolerance, 0.0, 1.0);
+      v.field("target_max_tilt_deg", e.target_max_tilt_deg, 0.0, 90.0);
       v.field("require_target_spots", e.require_target_spots);
       v.field("report_all_targets", e.report_all_targets);
     });
