@@ -60,6 +60,15 @@ Status choosePose(const ReconstructionConfig& config, const Pose* expected, Reco
     std::swap(c.status[0], c.status[1]);
     std::swap(c.spot_errors_px[0], c.spot_errors_px[1]);
   };
+  // The thesis's pixel contour modes keep its rule (the circle whose centre projects
+  // nearer the centre spot) and no check: their rim, from whole pixels, moves the pose's
+  // spots by more than the checks' sub-pixel limits on a good frame (docs/reconstruction.md).
+  if (o.contour_mode != ContourMode::SubPixel) {
+    out.pose = c.pose[0];
+    out.spot_error_px = std::max(c.spot_errors_px[0][0], c.spot_errors_px[0][1]);
+    out.rim_error_px = rimReprojectionError(config.camera, config.target, out.pose, out.contour_ideal);
+    return Status::Ok;
+  }
   if (ok(c.status[1]) && sumOfSquares(c.spot_errors_px[1]) < sumOfSquares(c.spot_errors_px[0])) swapCandidates();
   bool ambiguous = false;
   if (ok(c.status[1]) && normalsApartDeg(c.pose[0], c.pose[1]) > o.ambiguity_min_deg) {

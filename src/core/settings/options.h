@@ -136,6 +136,7 @@ struct ReconstructionOptions {
   // fixes the normal poorly (docs/reconstruction.md, docs/accuracy.md).
   bool centre_spot_normal = true;
   int crop_margin_px = 4;
+  // Sub-pixel contour mode only (the pixel modes keep the thesis's rule, unchecked).
   // Self-check (docs/reconstruction.md): a pose that puts a spot's image further than this
   // from where it was found, or the rim's further (RMS) from its contour points, is
   // PoseInconsistent.
