@@ -146,8 +146,8 @@ const CommandRegistration kRegistration{{
     "                    on black) into DIR, created if missing; <name> is the image's file\n"
     "                    name without extension, with _2, _3 ... added when an earlier image\n"
     "                    of the run had the same name (e.g. from another folder).\n"
-    "  --method M        laplace or sobel-thinning (default: the settings' edge method)\n"
-    "  --connectivity C  cn0 or cn1 (default: the settings' connectivity method)\n"
+    "  --method M        " + enumChoices<EdgeMethod>() + " (default: the settings' edge method)\n" +
+    "  --connectivity C  " + enumChoices<ConnectivityMethod>() + " (default: the settings' connectivity method)\n" +
     "An image that cannot be read (missing, corrupt, a folder or list without images)\n"
     "or whose PNGs cannot be written also gets one line on stderr naming it and the\n"
     "reason (status FileNotWritable for a failed write); the others are still processed\n"
