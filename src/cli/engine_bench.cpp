@@ -179,10 +179,11 @@ void printBenchText(const BenchKindRun& r, cv::Size size) {
 // rates and the peak memory.
 void printBenchEnd(const std::vector<BenchResolution>& results, const std::string& format) {
   if (format != "json") {
-    std::printf("\nsummary, frames/s          full frame      tracked\n");
+    std::printf("\nsummary, frames/s            full frame      tracked\n");
     for (const BenchResolution& r : results)
       for (const BenchKindRun& k : r.kinds)
-        std::printf("  %4dx%-4d %-13s %12.0f %12.0f\n", r.size.width, r.size.height,
+        std::printf("  %9s %-13s %12.0f %12.0f\n",
+                    (std::to_string(r.size.width) + "x" + std::to_string(r.size.height)).c_str(),
                     k.kind == BenchKind::Real ? "real scenes" : "virtual", k.full.hz, k.tracked.hz);
     std::printf("\npeak memory %.1f MB (including the pre-rendered frames)\n", peakMemoryKb() / 1024.0);
     return;
