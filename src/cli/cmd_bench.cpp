@@ -1,5 +1,5 @@
 // imagepro-cli bench: frames per second of the whole engine on a realistic virtual
-// sequence, with tracking off and on, per-stage times, peak memory and heap
+// sequence and on real scenes, with tracking off and on, per-stage times, peak memory and heap
 // allocations per frame (the peers' comparison is imagepro-studies bench-peers).
 #include "cli/bench_camera.h"
 #include "cli/command.h"
@@ -10,7 +10,7 @@ namespace {
 
 int run(const Args& args) {
   if (args.has("camera")) return runCameraBench(args);
-  args.rejectUnknown({"frames", "resolution", "format"});
+  args.rejectUnknown(kBenchOptionNames);
   runBench(benchOptions(args));
   return 0;
 }
@@ -18,11 +18,17 @@ int run(const Args& args) {
 const CommandRegistration kRegistration{{
     "bench",
     "frames/s of the engine, tracking off and on, on rendered or live camera frames",
-    "usage: imagepro-cli bench [--config FILE] [--frames N] [--resolution WxH|all] [--format text|json]\n\n"
-    "Renders N realistic grey frames of a moving target, then times ImagePro's engine on one\n"
-    "core with tracking off and on. Prints frames/s, per-stage median and 99th-percentile\n"
-    "microseconds, heap allocations per frame and peak memory. --resolution all also runs\n"
-    "1280x720 and 1920x1080. --format json prints one object with full_frame_hz, tracked_hz.\n"
+    "usage: imagepro-cli bench [--config FILE] [--frames N] [--resolution WxH|all]\n"
+    "                          [--backgrounds DIR] [--format text|json]\n\n"
+    "Renders N realistic grey frames of a moving target in the virtual bench scene, and N\n"
+    "real-scene frames (the target moving over photographs, 50 frames over each, light,\n"
+    "blur, noise, JPEG), then times ImagePro's engine on one core with tracking off and on,\n"
+    "on each kind. Prints frames/s, per-stage median and 99th-percentile microseconds, heap\n"
+    "allocations per frame, a summary and peak memory. --resolution all also runs 1280x720\n"
+    "and 1920x1080. --backgrounds DIR: the photographs (default $IMAGEPRO_BACKGROUNDS or\n"
+    "opencv-doc's; without any, one line says so and the virtual kind stands alone).\n"
+    "--format json prints one object with full_frame_hz, tracked_hz, real_full_frame_hz,\n"
+    "real_tracked_hz.\n"
     "The same frames timed beside an OpenCV pipeline and AprilTag: imagepro-studies bench-peers.\n\n"
     "usage: imagepro-cli bench --camera /dev/videoN [--size WxH] [--fps N] [--frames N] [--config FILE]\n"
     "                          [--format text|json]\n\n"

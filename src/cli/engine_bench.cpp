@@ -7,6 +7,8 @@
 #include <cstdio>
 
 #include "core/pipeline/engine.h"
+#include "cli/real_bench_scene.h"
+#include "core/source/background_photos.h"
 #include "core/source/bench_scene.h"
 
 namespace imagepro::cli {
@@ -28,27 +30,40 @@ long peakMemoryKb() {
   return u.ru_maxrss;
 }
 
-std::string jsonResolution(const BenchResolution& r) {
+const char* prefix(BenchKind kind) { return kind == BenchKind::Real ? "real_" : ""; }
+
+// A kind's keys, prefixed "real_" for the real scenes: rates, poses found, allocations.
+std::string jsonKind(const BenchKindRun& k) {
+  const char* p = prefix(k.kind);
   char buf[256];
   std::string out;
-  std::snprintf(buf, sizeof buf, "{\"width\": %d, \"height\": %d, \"frames\": %d, \"full_frame_hz\": %.1f, \"tracked_hz\": %.1f",
-                r.size.width, r.size.height, r.full.frames, r.full.hz, r.tracked.hz);
+  std::snprintf(buf, sizeof buf, ", \"%sframes\": %d, \"%sfull_frame_hz\": %.1f, \"%stracked_hz\": %.1f", p,
+                k.full.frames, p, k.full.hz, p, k.tracked.hz);
   out += buf;
-  for (const BenchPeer& p : r.peers) {
-    std::snprintf(buf, sizeof buf, ", \"%s_hz\": %.1f", p.json_name.c_str(), p.run.hz);
+  for (const BenchPeer& peer : k.peers) {
+    std::snprintf(buf, sizeof buf, ", \"%s%s_hz\": %.1f", p, peer.json_name.c_str(), peer.run.hz);
     out += buf;
   }
-  std::snprintf(buf, sizeof buf, ", \"full_frame_found\": %d, \"tracked_found\": %d", r.full.found, r.tracked.found);
+  std::snprintf(buf, sizeof buf, ", \"%sfull_frame_found\": %d, \"%stracked_found\": %d", p, k.full.found, p,
+                k.tracked.found);
   out += buf;
-  for (const BenchPeer& p : r.peers) {
-    std::snprintf(buf, sizeof buf, ", \"%s_found\": %d", p.json_name.c_str(), p.run.found);
+  for (const BenchPeer& peer : k.peers) {
+    std::snprintf(buf, sizeof buf, ", \"%s%s_found\": %d", p, peer.json_name.c_str(), peer.run.found);
     out += buf;
   }
   std::snprintf(buf, sizeof buf,
-                ", \"full_frame_allocations_per_frame\": %.3f, \"tracked_allocations_per_frame\": %.3f, "
-                "\"tracked_region_fraction\": %.4f}",
-                r.full.allocationsPerFrame(), r.tracked.allocationsPerFrame(), r.tracked.mean_region_fraction);
+                ", \"%sfull_frame_allocations_per_frame\": %.3f, \"%stracked_allocations_per_frame\": %.3f, "
+                "\"%stracked_region_fraction\": %.4f",
+                p, k.full.allocationsPerFrame(), p, k.tracked.allocationsPerFrame(), p, k.tracked.mean_region_fraction);
   return out + buf;
+}
+
+std::string jsonResolution(const BenchResolution& r) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "{\"width\": %d, \"height\": %d", r.size.width, r.size.height);
+  std::string out = buf;
+  for (const BenchKindRun& k : r.kinds) out += jsonKind(k);
+  return out + "}";
 }
 
 }  // namespace
@@ -69,6 +84,7 @@ BenchOptions benchOptions(const Args& args) {
   if (options.frames < 10) throw UsageError("--frames must be at least 10");
   options.format = args.valueOr("format", "text");
   if (options.format != "text" && options.format != "json") throw UsageError("--format must be text or json");
+  options.backgrounds = args.valueOr("backgrounds", defaultBackgroundsDir());
   const std::string resolution = args.valueOr("resolution", "640x480");
   if (resolution == "all") {
     options.sizes = {{640, 480}, {1280, 720}, {1920, 1080}};
@@ -119,9 +135,14 @@ namespace {
 
 // The engine's rows, the peers' rows, their ratios, the tracked region and the
 // per-stage median and 99th percentile.
-void printBenchText(const BenchResolution& r) {
-  std::printf("\n== %dx%d, %d frames (grey, blur 0.8 px, noise 3, 8 clutter objects, moving target)\n",
-              r.size.width, r.size.height, r.full.frames);
+void printBenchText(const BenchKindRun& r, cv::Size size) {
+  if (r.kind == BenchKind::Virtual)
+    std::printf("\n== %dx%d, virtual scene, %d frames (grey, blur 0.8 px, noise 3, 8 clutter objects, moving target)\n",
+                size.width, size.height, r.full.frames);
+  else
+    std::printf("\n== %dx%d, real scenes, %d frames (the target moving over photographs, %d frames each; light +-30 %%, "
+                "blur 0.8 px, noise 2, JPEG 75)\n",
+                size.width, size.height, r.full.frames, kRealBenchVideoFrames);
   std::printf("%-26s %12s %10s %14s %16s\n", "pipeline", "frames/s", "found", "mean |dT| mm", "allocs/frame");
   auto row = [](const std::string& name, const BenchRun& run) {
     std::printf("%-26s %12.0f %6d/%-4d %14.2f %16.2f\n", name.c_str(), run.hz, run.found, run.frames,
@@ -154,19 +175,43 @@ void printBenchText(const BenchResolution& r) {
   }
 }
 
-// After every resolution: the JSON object of them all, or the peak memory line of the text.
+// After every resolution: the JSON object of them all, or the text's summary of the
+// rates and the peak memory.
 void printBenchEnd(const std::vector<BenchResolution>& results, const std::string& format) {
   if (format != "json") {
+    std::printf("\nsummary, frames/s            full frame      tracked\n");
+    for (const BenchResolution& r : results)
+      for (const BenchKindRun& k : r.kinds)
+        std::printf("  %9s %-13s %12.0f %12.0f\n",
+                    (std::to_string(r.size.width) + "x" + std::to_string(r.size.height)).c_str(),
+                    k.kind == BenchKind::Real ? "real scenes" : "virtual", k.full.hz, k.tracked.hz);
     std::printf("\npeak memory %.1f MB (including the pre-rendered frames)\n", peakMemoryKb() / 1024.0);
     return;
   }
   // The first resolution's rates at the top, for a quick look.
   const BenchResolution& first = results.front();
-  std::printf("{\"full_frame_hz\": %.1f, \"tracked_hz\": %.1f", first.full.hz, first.tracked.hz);
-  for (const BenchPeer& p : first.peers) std::printf(", \"%s_hz\": %.1f", p.json_name.c_str(), p.run.hz);
+  std::printf("{");
+  const char* comma = "";
+  for (const BenchKindRun& k : first.kinds) {
+    const char* p = prefix(k.kind);
+    std::printf("%s\"%sfull_frame_hz\": %.1f, \"%stracked_hz\": %.1f", comma, p, k.full.hz, p, k.tracked.hz);
+    for (const BenchPeer& peer : k.peers) std::printf(", \"%s%s_hz\": %.1f", p, peer.json_name.c_str(), peer.run.hz);
+    comma = ", ";
+  }
   std::printf(", \"peak_memory_kb\": %ld, \"resolutions\": [", peakMemoryKb());
   for (std::size_t i = 0; i < results.size(); ++i) std::printf("%s%s", i ? ", " : "", jsonResolution(results[i]).c_str());
   std::printf("]}\n");
+}
+
+// The engine with tracking off and on, then the peers of the sequence's kind.
+BenchKindRun timeKind(const BenchSequence& sequence, const PeerTiming& time_peers) {
+  BenchKindRun r;
+  r.kind = sequence.kind;
+  std::fprintf(stderr, "timing ImagePro (full frame, tracked) ...\n");
+  r.full = timeEngine(sequence, TrackingMode::Off);
+  r.tracked = timeEngine(sequence, TrackingMode::Corners2D);
+  if (time_peers) time_peers(sequence, r);
+  return r;
 }
 
 }  // namespace
@@ -174,17 +219,27 @@ void printBenchEnd(const std::vector<BenchResolution>& results, const std::strin
 void runBench(const BenchOptions& options, const PeerTiming& time_peers) {
   // One core for everybody: OpenCV would otherwise spread a peer's work over threads.
   cv::setNumThreads(1);
+  const bool text = options.format == "text";
   std::vector<BenchResolution> results;
   for (const cv::Size& size : options.sizes) {
-    std::fprintf(stderr, "rendering %d frames at %dx%d ...\n", options.frames, size.width, size.height);
-    const BenchSequence sequence = renderBenchFrames(size, options.frames);
     BenchResolution r;
     r.size = size;
-    std::fprintf(stderr, "timing ImagePro (full frame, tracked) ...\n");
-    r.full = timeEngine(sequence, TrackingMode::Off);
-    r.tracked = timeEngine(sequence, TrackingMode::Corners2D);
-    if (time_peers) time_peers(sequence, r);
-    if (options.format == "text") printBenchText(r);
+    {  // each kind's frames are freed before the next kind's are rendered
+      std::fprintf(stderr, "rendering %d frames at %dx%d ...\n", options.frames, size.width, size.height);
+      r.kinds.push_back(timeKind(renderBenchFrames(size, options.frames), time_peers));
+      if (text) printBenchText(r.kinds.back(), size);
+    }
+    std::fprintf(stderr, "rendering %d real-scene frames at %dx%d ...\n", options.frames, size.width, size.height);
+    BenchSequence real;
+    std::string error;
+    if (renderRealBenchFrames(size, options.frames, options.backgrounds, real, error)) {
+      r.kinds.push_back(timeKind(real, time_peers));
+      if (text) printBenchText(r.kinds.back(), size);
+    } else {
+      // One line, and the virtual kind stands alone.
+      std::fprintf(text ? stdout : stderr, "%sreal scenes: left out, %s (Debian's opencv-doc or --backgrounds DIR has some)\n",
+                   text ? "\n" : "", error.c_str());
+    }
     results.push_back(std::move(r));
   }
   printBenchEnd(results, options.format);

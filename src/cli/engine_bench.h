@@ -1,8 +1,9 @@
 #pragma once
-// The engine's throughput on the realistic bench scene (core/source/bench_scene.h),
-// timed on one core over pre-rendered frames, with tracking off and on: frames per
-// second, poses found and their mean position error, per-stage times and heap
-// allocations per frame. `imagepro-cli bench` reports it alone; `imagepro-studies
+// The engine's throughput, timed on one core over pre-rendered frames, with tracking off
+// and on: frames per second, poses found and their mean position error, per-stage times
+// and heap allocations per frame. Two kinds of frames: the realistic virtual bench scene
+// (core/source/bench_scene.h) and real scenes, the target over photographs
+// (real_bench_scene.h; left out, said in one line, when there are no photographs). `imagepro-cli bench` reports it alone; `imagepro-studies
 // bench-peers` times the peers on the very same frames in the same run and reports
 // them in the same table.
 #include <opencv2/core.hpp>
@@ -20,12 +21,19 @@
 #include "core/common/frame.h"
 #include "core/pipeline/frame_result.h"
 #include "core/settings/settings.h"
+#include "core/source/real_scene.h"
 
 namespace imagepro::cli {
 
+enum class BenchKind : std::uint8_t { Virtual, Real };
+
 struct BenchSequence {
+  BenchKind kind = BenchKind::Virtual;
   Settings settings;         // the bench scene's, for this frame size
   std::vector<Frame> frames;  // degraded, each with its true pose
+  // Real scenes: frame `index` drawn again with `painter` in the target's place (a peer's
+  // object at the same pose in the same conditions); false with `error` on a failure.
+  std::function<bool(int index, const ScenePainter& painter, RealSceneFrame& out, std::string& error)> redraw;
 };
 
 struct BenchRun {
@@ -52,19 +60,29 @@ struct BenchPeer {
   BenchRun run;
 };
 
-struct BenchResolution {
-  cv::Size size;
+// The engine (and the peers) on one kind of frames at one resolution.
+struct BenchKindRun {
+  BenchKind kind = BenchKind::Virtual;
   BenchRun full, tracked;
   std::vector<BenchPeer> peers;
 };
 
+struct BenchResolution {
+  cv::Size size;
+  std::vector<BenchKindRun> kinds;  // virtual, then real scenes when there are photographs
+};
+
 // --frames (at least 10, default 200), --format (text or json), --resolution (WxH or all:
-// 640x480, 1280x720, 1920x1080); UsageError naming the option otherwise.
+// 640x480, 1280x720, 1920x1080), --backgrounds (the real scenes' photographs); UsageError
+// naming the option otherwise.
 struct BenchOptions {
   int frames = 200;
   std::string format = "text";
   std::vector<cv::Size> sizes;
+  std::string backgrounds;
 };
+// The options benchOptions reads.
+inline const std::vector<std::string> kBenchOptionNames{"frames", "resolution", "format", "backgrounds"};
 BenchOptions benchOptions(const Args& args);
 
 BenchSequence renderBenchFrames(cv::Size size, int frames);
@@ -88,12 +106,12 @@ BenchRun timeDetector(const std::vector<Frame>& frames, Detect&& detect) {
   return run;
 }
 
-// Times `sequence`'s peers into `r.peers`, after the engine.
-using PeerTiming = std::function<void(const BenchSequence& sequence, BenchResolution& r)>;
+// Times `sequence`'s peers (those of its kind) into `r.peers`, after the engine.
+using PeerTiming = std::function<void(const BenchSequence& sequence, BenchKindRun& r)>;
 
-// At every resolution of `options`, on one core: renders the frames, times the engine
-// with tracking off and on, then the peers, and prints the report (text as each
-// resolution is done, JSON at the end).
+// At every resolution of `options`, on one core, for each kind of frames: renders them,
+// times the engine with tracking off and on, then the peers, and prints the report (text
+// as each is done, JSON at the end).
 void runBench(const BenchOptions& options, const PeerTiming& time_peers = {});
 
 }  // namespace imagepro::cli

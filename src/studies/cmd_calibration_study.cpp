@@ -11,7 +11,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <random>
 #include <string>
@@ -25,6 +24,7 @@
 #include "core/common/atomic_file.h"
 #include "core/pipeline/engine.h"
 #include "core/source/virtual_renderer.h"
+#include "studies/report.h"
 
 namespace imagepro::studies {
 namespace {
@@ -37,15 +37,6 @@ constexpr double kDeg = M_PI / 180.0;
 // Everything from this line on in an existing FILE is written by hand (the application's
 // calibration wizard) and kept when the figures above it are measured again.
 constexpr const char* kKeptSectionsMarker = "<!-- Hand-written sections below: kept by imagepro-studies calibration-study -->";
-
-std::string format(const char* fmt, ...) {
-  char buf[1024];
-  va_list ap;
-  va_start(ap, fmt);
-  std::vsnprintf(buf, sizeof buf, fmt, ap);
-  va_end(ap);
-  return buf;
-}
 
 // OpenCV's model (normalised coordinates, k3 = 0 here) as a pixel displacement field.
 DisplacementField openCvField(const cv::Mat& K, const cv::Mat& dist) {

@@ -8,6 +8,7 @@
 
 #include "core/common/atomic_file.h"
 #include "support/cli_run.h"
+#include "support/photographs.h"
 #include "support/test_dirs.h"
 
 namespace imagepro {
@@ -36,32 +37,35 @@ TEST(Studies, OverviewListsTheStudiesAndEachHasHelp) {
   EXPECT_NE(unknown.err.find("imagepro-studies: unknown command \"reconstruct\""), std::string::npos) << unknown.err;
 }
 
-// The accuracy study end to end on the smallest run: a complete report that names the
-// command regenerating it.
+// The accuracy study's virtual part end to end on the smallest run: a complete report
+// that names the command regenerating it (the real scenes: real_scene_accuracy_test.cpp).
 TEST(Studies, AccuracySmokeRunWritesItsReport) {
   const fs::path dir = freshDir("studies_accuracy");
   const fs::path out = dir / "accuracy.md";
-  const CliRun r = studies("accuracy --frames 2 --seed 3 --out " + out.string());
+  const CliRun r = studies("accuracy --scene virtual --frames 2 --seed 3 --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::string md, e;
   ASSERT_TRUE(readWholeFile(out.string(), md, e)) << e;
   EXPECT_EQ(md.rfind("# Accuracy\n", 0), 0u);
   for (const char* part :
-       {"`imagepro-studies accuracy --frames 2 --seed 3`", "## Goals (issue 4)", "| detection, whole target visible |",
+       {"`imagepro-studies accuracy --scene virtual --frames 2 --seed 3`", "## Goals (issue 4)", "| detection, whole target visible |",
         "The same goals per tilt band", "## No lens distortion", "## Thesis camera's lens distortion, corrected",
         "| sub-pixel | 2 |", "| ArUco 4x4 (IPPE) | 2 |", "## The plane normal", "## Lens distortion correction",
         "| thesis camera x 1.0 |"})
     EXPECT_NE(md.find(part), std::string::npos) << part;
   EXPECT_EQ(md.find("nan"), std::string::npos);
+  EXPECT_EQ(md.find("## Real scenes"), std::string::npos);
   const CliRun bad = studies("accuracy --frames 0");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("imagepro-studies accuracy: "), std::string::npos) << bad.err;
 }
 
 // The peers on the same frames as the engine: every method finds the target in every
-// frame of the bench scene, and the report carries each one's rate.
+// frame of the bench scene, and the report carries each one's rate. Without photographs
+// the real scenes, and ArUco with them, are left out.
 TEST(Studies, BenchPeersTimesTheEngineAndBothPeers) {
-  const CliRun r = studies("bench-peers --frames 10 --format json");
+  const fs::path empty = freshDir("studies_bench_no_photos");
+  const CliRun r = studies("bench-peers --frames 10 --format json --backgrounds " + empty.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   for (const char* key : {"full_frame_hz", "tracked_hz", "opencv_pipeline_hz", "apriltag_hz"})
@@ -69,7 +73,33 @@ TEST(Studies, BenchPeersTimesTheEngineAndBothPeers) {
   const auto& res = j.at("resolutions").at(0);
   for (const char* key : {"full_frame_found", "tracked_found", "opencv_pipeline_found", "apriltag_found"})
     EXPECT_EQ(res.at(key).get<int>(), 10) << key;
+  EXPECT_FALSE(j.contains("real_aruco_hz"));
+  EXPECT_NE(r.err.find("real scenes: left out, no photographs in " + empty.string()), std::string::npos) << r.err;
   EXPECT_EQ(studies("bench-peers --frames 3").exit_code, 2);
+}
+
+// On real scenes the robust peer, ArUco, is timed on the very frames the engine was, its
+// marker in the target's place, and the text gives the engine's ratios against it.
+TEST(Studies, BenchPeersTimesArucoOnRealScenes) {
+  if (const std::string why = test::missingPhotographs(); !why.empty()) GTEST_SKIP() << why;
+  const CliRun json = studies("bench-peers --frames 10 --format json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const auto j = nlohmann::json::parse(json.out);
+  for (const char* key : {"real_full_frame_hz", "real_tracked_hz", "real_aruco_hz"})
+    EXPECT_GT(j.at(key).get<double>(), 0.0) << key;
+  const auto& res = j.at("resolutions").at(0);
+  EXPECT_EQ(res.at("real_frames").get<int>(), 10);
+  for (const char* key : {"real_full_frame_found", "real_tracked_found", "real_aruco_found"}) {
+    EXPECT_GE(res.at(key).get<int>(), 8) << key;  // large, clear targets and markers
+    EXPECT_LE(res.at(key).get<int>(), 10) << key;
+  }
+  const CliRun text = studies("bench-peers --frames 10");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  const std::size_t real = text.out.find("real scenes, 10 frames");
+  ASSERT_NE(real, std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("ArUco 4x4 (OpenCV, IPPE)", real), std::string::npos);
+  EXPECT_NE(text.out.find("ratios: full/ArUco ", real), std::string::npos);
+  EXPECT_NE(text.out.find("tracked/ArUco ", real), std::string::npos);
 }
 
 }  // namespace

@@ -101,6 +101,23 @@ bool cardInFrame(const CameraModel& camera, const TargetGeometry& target, double
   return true;
 }
 
+void composeOver(const cv::Mat& background, const std::function<void(int level, cv::Mat& out)>& paint,
+                 cv::Mat& scene) {
+  CV_Assert(background.type() == CV_8UC1);
+  cv::Mat over_black, over_white;
+  paint(0, over_black);
+  paint(255, over_white);
+  CV_Assert(over_black.type() == CV_8UC1 && over_black.size() == background.size() &&
+            over_white.type() == CV_8UC1 && over_white.size() == background.size());
+  cv::Mat a, b, photo;
+  over_black.convertTo(a, CV_32F);
+  over_white.convertTo(b, CV_32F);
+  background.convertTo(photo, CV_32F);
+  // scene = target + (1 - coverage) * photo, with (1 - coverage) = (b - a) / 255.
+  cv::Mat show_through = (b - a) * (1.0 / 255.0);
+  scene = a + show_through.mul(photo);
+}
+
 void composeTarget(const cv::Mat& background, const CameraModel& camera, const TargetGeometry& target,
                    const TargetLook& look, const Pose& pose, cv::Mat& scene) {
   CV_Assert(background.type() == CV_8UC1 && background.cols == camera.width && background.rows == camera.height);
@@ -109,18 +126,13 @@ void composeTarget(const cv::Mat& background, const CameraModel& camera, const T
   flat.white_level = look.white;
   flat.black_level = look.black;
   flat.card_size_mm = look.card_size_mm;
-  flat.background_level = 0;
-  cv::Mat over_black, over_white;
-  renderTarget(camera, target, flat, pose, over_black);
-  flat.background_level = 255;
-  renderTarget(camera, target, flat, pose, over_white);
-  cv::Mat a, b, photo;
-  over_black.convertTo(a, CV_32F);
-  over_white.convertTo(b, CV_32F);
-  background.convertTo(photo, CV_32F);
-  // scene = target + (1 - coverage) * photo, with (1 - coverage) = (b - a) / 255.
-  cv::Mat show_through = (b - a) * (1.0 / 255.0);
-  scene = a + show_through.mul(photo);
+  composeOver(
+      background,
+      [&](int level, cv::Mat& out) {
+        flat.background_level = level;
+        renderTarget(camera, target, flat, pose, out);
+      },
+      scene);
 }
 
 RealScenes::RealScenes(const Settings& settings, std::vector<std::string> photos)
@@ -138,8 +150,16 @@ bool RealScenes::background(const std::string& path, double zoom, double fx, dou
   return true;
 }
 
+void RealScenes::paint(const ScenePainter& painter, const cv::Mat& background, const Pose& pose,
+                       const TargetLook& look, cv::Mat& scene) const {
+  if (painter)
+    painter(background, pose, look, scene);
+  else
+    composeTarget(background, settings_.camera, settings_.target, look, pose, scene);
+}
+
 bool RealScenes::still(std::uint64_t seed, std::int64_t index, bool with_target, RealSceneFrame& out,
-                       std::string& error) const {
+                       std::string& error, const ScenePainter& painter) const {
   if (photos_.empty()) {
     error = "no photographs to draw the scenes over";
     return false;
@@ -149,7 +169,7 @@ bool RealScenes::still(std::uint64_t seed, std::int64_t index, bool with_target,
   if (!background(photos_[d.photo], d.zoom, d.fx, d.fy, photo, error)) return false;
   cv::Mat scene;
   if (with_target) {
-    composeTarget(photo, settings_.camera, settings_.target, d.look, d.pose, scene);
+    paint(painter, photo, d.pose, d.look, scene);
     out.truth = d.pose;
   } else {
     photo.convertTo(scene, CV_32F);

@@ -17,6 +17,7 @@
 #include <opencv2/core.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -56,10 +57,24 @@ Pose poseAlongRay(const CameraModel& camera, const Eigen::Vector2d& centre, doub
 bool cardInFrame(const CameraModel& camera, const TargetGeometry& target, double card_size_mm, const Pose& pose,
                  double margin_px);
 
+// Puts an opaque object over `background` (CV_8UC1): `paint(level, out)` draws it, anti-aliased,
+// over a flat CV_8UC1 frame of grey `level` of the background's size, and is called for 0
+// and 255. `scene` is CV_32FC1 grey levels, the photograph showing through wherever the
+// object covers a pixel only partly.
+void composeOver(const cv::Mat& background, const std::function<void(int level, cv::Mat& out)>& paint,
+                 cv::Mat& scene);
+
 // Draws the target at `pose` over `background` (CV_8UC1, the camera's size): `scene` is
 // CV_32FC1 grey levels, before any imaging condition.
 void composeTarget(const cv::Mat& background, const CameraModel& camera, const TargetGeometry& target,
                    const TargetLook& look, const Pose& pose, cv::Mat& scene);
+
+// What a frame shows at its pose, over the photograph cut to the frame (`background`, CV_8UC1),
+// into `scene` (CV_32FC1, before the imaging conditions). Empty: the target (composeTarget).
+// Another object, such as a reference marker, drawn through the same draws of pose, look,
+// photograph and conditions gives that object's twin of the frame.
+using ScenePainter = std::function<void(const cv::Mat& background, const Pose& pose, const TargetLook& look,
+                                        cv::Mat& scene)>;
 
 // Still frames and negatives over the photographs `photos`.
 class RealScenes {
@@ -67,9 +82,14 @@ class RealScenes {
   RealScenes(const Settings& settings, std::vector<std::string> photos);
 
   // Still `index` of the set `seed`; `with_target` false gives its negative. False with
-  // `error` when there is no photograph or the one drawn cannot be read.
-  bool still(std::uint64_t seed, std::int64_t index, bool with_target, RealSceneFrame& out,
-             std::string& error) const;
+  // `error` when there is no photograph or the one drawn cannot be read. `painter` draws
+  // something else than the target at the still's pose (truth stays that pose).
+  bool still(std::uint64_t seed, std::int64_t index, bool with_target, RealSceneFrame& out, std::string& error,
+             const ScenePainter& painter = {}) const;
+
+  // The target drawn over `background` by `painter`, or composeTarget when it is empty.
+  void paint(const ScenePainter& painter, const cv::Mat& background, const Pose& pose, const TargetLook& look,
+             cv::Mat& scene) const;
 
   // Still `index`'s pose alone (what still() draws the target at).
   Pose stillPose(std::uint64_t seed, std::int64_t index) const;

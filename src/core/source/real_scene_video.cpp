@@ -65,7 +65,7 @@ SceneConditions RealSceneVideo::conditionsAt(int index) const {
   return c;
 }
 
-bool RealSceneVideo::frame(int index, RealSceneFrame& out, std::string& error) const {
+bool RealSceneVideo::frame(int index, RealSceneFrame& out, std::string& error, const ScenePainter& painter) const {
   if (scenes_.photos().empty()) {
     error = "no photographs to draw the scenes over";
     return false;
@@ -79,7 +79,7 @@ bool RealSceneVideo::frame(int index, RealSceneFrame& out, std::string& error) c
     out.truth.reset();
   } else {
     const Pose pose = poseAt(index);
-    composeTarget(photo, scenes_.settings().camera, scenes_.settings().target, look_, pose, scene);
+    scenes_.paint(painter, photo, pose, look_, scene);
     out.truth = pose;
   }
   out.conditions = conditionsAt(index);

@@ -26,8 +26,9 @@ class RealSceneVideo {
   // The target's pose at frame `index` (also while hidden: where it would be).
   Pose poseAt(int index) const;
   SceneConditions conditionsAt(int index) const;
-  // Frame `index`; false with `error` when the photograph cannot be read.
-  bool frame(int index, RealSceneFrame& out, std::string& error) const;
+  // Frame `index`; false with `error` when the photograph cannot be read. `painter` draws
+  // something else than the target at the frame's pose (RealScenes::still's).
+  bool frame(int index, RealSceneFrame& out, std::string& error, const ScenePainter& painter = {}) const;
 
   static constexpr double kFrameRateHz = 25.0;
 

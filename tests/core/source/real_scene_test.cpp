@@ -5,6 +5,7 @@
 #include "core/source/real_scene.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -31,9 +32,10 @@ cv::Mat texturedBackground(cv::Size size, int seed) {
   return bg;
 }
 
-// Three such photographs as files, so the tests need no installed package.
+// Three such photographs as files, so the tests need no installed package. A folder per
+// process: ctest runs the tests of this file in parallel, and each one makes them anew.
 std::vector<std::string> syntheticPhotos() {
-  const fs::path dir = test::freshDir("real_scene_photos");
+  const fs::path dir = test::freshDir("real_scene_photos_" + std::to_string(getpid()));
   std::vector<std::string> paths;
   for (int i = 0; i < 3; ++i) {
     const std::string path = (dir / ("photo" + std::to_string(i) + (i == 2 ? ".jpg" : ".png"))).string();
@@ -163,6 +165,45 @@ TEST(RealScene, StillsAreReproducibleAndVaryWithTheSeed) {
   EXPECT_EQ(negative.background, a.background);
   EXPECT_EQ(negative.conditions.jpeg_quality, a.conditions.jpeg_quality);
   EXPECT_GT(cv::norm(a.image, negative.image, cv::NORM_INF), 100.0);  // where the target was
+}
+
+// A painter draws something else at the very pose, over the same photograph, through the
+// same conditions: one that draws nothing gives the negative; one that draws a flat grey
+// patch differs only around the target; the truth stays the still's pose.
+TEST(RealScene, APainterDrawsInTheTargetsPlace) {
+  const RealScenes scenes(thesisLens(), syntheticPhotos());
+  std::string error;
+  RealSceneFrame target, nothing, negative, patch;
+  ASSERT_TRUE(scenes.still(7, 4, true, target, error)) << error;
+  ASSERT_TRUE(scenes.still(7, 4, false, negative, error)) << error;
+  const ScenePainter none = [](const cv::Mat& bg, const Pose&, const TargetLook&, cv::Mat& scene) {
+    bg.convertTo(scene, CV_32F);
+  };
+  ASSERT_TRUE(scenes.still(7, 4, true, nothing, error, none)) << error;
+  ASSERT_TRUE(nothing.truth && target.truth);
+  EXPECT_EQ(nothing.truth->tz_mm, target.truth->tz_mm);
+  EXPECT_EQ(nothing.background, target.background);
+  EXPECT_EQ(cv::norm(nothing.image, negative.image, cv::NORM_INF), 0.0);
+  // A 9x9 patch of the look's white at the image of the target's centre, through composeOver.
+  const Settings& s = scenes.settings();
+  cv::Point centre;
+  const ScenePainter square = [&](const cv::Mat& bg, const Pose& pose, const TargetLook& look, cv::Mat& scene) {
+    centre = imageOf(s.camera, pose, 0, 0);
+    composeOver(
+        bg,
+        [&](int level, cv::Mat& out) {
+          out = cv::Mat(bg.size(), CV_8UC1, cv::Scalar(level));
+          out(cv::Rect(centre.x - 4, centre.y - 4, 9, 9)).setTo(look.white);
+        },
+        scene);
+  };
+  ASSERT_TRUE(scenes.still(7, 4, true, patch, error, square)) << error;
+  cv::Mat differs;
+  cv::compare(cv::abs(cv::Mat_<int>(patch.image) - cv::Mat_<int>(negative.image)), 40, differs, cv::CMP_GT);
+  const cv::Rect near(centre.x - 12, centre.y - 12, 25, 25);  // the patch and its blur
+  EXPECT_GT(cv::countNonZero(differs(near)), 40);
+  differs(near).setTo(0);
+  EXPECT_EQ(cv::countNonZero(differs), 0);
 }
 
 TEST(RealScene, StillsKeepToTheirRanges) {
