@@ -53,7 +53,7 @@ QWidget* thresholdPanel(SettingsBinder& binder) {
   auto b = [](Settings& s) -> BinarizationOptions& { return s.pipeline.binarization; };
   form->addRow(QObject::tr("Binarization"),
                named(binder.combo<Binarization>([b](Settings& s) -> auto& { return b(s).mode; }), "binarizationMode"));
-  auto* window = named(binder.intSpin([b](Settings& s) -> auto& { return b(s).window_px; }, 0, 4095, QStringLiteral(" px")),
+  auto* window = named(binder.intSpin([b](Settings& s) -> auto& { return b(s).window_px; }, 0, 2047, QStringLiteral(" px")),
                        "localWindow", QObject::tr("Side of the local window; 0: a sixteenth of the image width"));
   auto* offset = named(binder.doubleSpin([b](Settings& s) -> auto& { return b(s).offset; }, 0.0, 1.0, 2),
                        "localOffset", QObject::tr("Black: darker than the window's mean by more than this fraction of it ..."));

@@ -22,41 +22,51 @@ void binarizeLocal(const cv::Mat& grey, const BinarizationOptions& options, Loca
   const int rows = grey.rows, cols = grey.cols;
   const int half = localWindowPx(options, grey.size()) / 2;
   reuseBuffer(binary, grey.size(), allocationSize(grey));
-  // The window's mean by running sums, first down the columns, then along the row, with
-  // replicated borders (a frame's edge is not darker than what lies beyond it). No
-  // library filter: those allocate their buffers on every call.
+  // The window's sum from column sums slid down the image and, along each row, a prefix
+  // sum of them (window = two prefix entries), with replicated borders: a frame's edge is
+  // not darker than what lies beyond it. No library filter: those allocate their buffers
+  // on every call. The loops over columns have no branches, so they run in vector lanes.
   const auto clampRow = [rows](int y) { return std::clamp(y, 0, rows - 1); };
-  const auto clampCol = [cols](int x) { return std::clamp(x, 0, cols - 1); };
   std::vector<std::uint32_t>& columns = ws.column_sums;
+  std::vector<std::uint32_t>& prefix = ws.row_prefix;
   columns.assign(static_cast<std::size_t>(cols), 0);
+  // The prefix runs over the row with `half` replicated columns either side.
+  prefix.resize(static_cast<std::size_t>(cols + 2 * half + 1));
   for (int k = -half; k <= half; ++k) {
     const std::uint8_t* g = grey.ptr<std::uint8_t>(clampRow(k));
     for (int x = 0; x < cols; ++x) columns[static_cast<std::size_t>(x)] += g[x];
   }
-  const std::uint64_t side = static_cast<std::uint64_t>(2 * half + 1);
-  const std::uint64_t area = side * side;
-  // mean = sum / area as a multiplication: (sum * inverse) >> 32, exact to below 1/2 grey level.
-  const std::uint64_t inverse = ((std::uint64_t{1} << 32) + area / 2) / area;
-  const auto relative = static_cast<std::uint32_t>(std::lround(std::clamp(options.offset, 0.0, 1.0) * 256.0));
-  const auto absolute = static_cast<std::uint32_t>(std::clamp(options.min_contrast, 0, 255));
+  const int side = 2 * half + 1;
+  const float inverseArea = 1.0f / (static_cast<float>(side) * static_cast<float>(side));
+  const float offset = static_cast<float>(std::clamp(options.offset, 0.0, 1.0));
+  const float contrast = static_cast<float>(std::clamp(options.min_contrast, 0, 255));
 
   for (int y = 0; y < rows; ++y) {
     if (y > 0) {  // slide the column sums down by one row
       const std::uint8_t* in = grey.ptr<std::uint8_t>(clampRow(y + half));
       const std::uint8_t* out = grey.ptr<std::uint8_t>(clampRow(y - half - 1));
-      for (int x = 0; x < cols; ++x) columns[static_cast<std::size_t>(x)] += in[x] - out[x];
+      std::uint32_t* c = columns.data();
+      for (int x = 0; x < cols; ++x) c[x] += static_cast<std::uint32_t>(in[x]) - out[x];
     }
+    // prefix[i] = sum of the padded row's first i column sums; padded column j is column
+    // clamp(j - half).
+    std::uint32_t* p = prefix.data();
+    const std::uint32_t* c = columns.data();
+    std::uint32_t running = 0;
+    p[0] = 0;
+    int j = 0;
+    for (; j < half; ++j) p[j + 1] = running += c[0];
+    for (; j < half + cols; ++j) p[j + 1] = running += c[j - half];
+    for (; j < cols + 2 * half; ++j) p[j + 1] = running += c[cols - 1];
     const std::uint8_t* g = grey.ptr<std::uint8_t>(y);
     std::uint8_t* b = binary.ptr<std::uint8_t>(y);
-    std::uint64_t sum = 0;
-    for (int k = -half; k <= half; ++k) sum += columns[static_cast<std::size_t>(clampCol(k))];
     for (int x = 0; x < cols; ++x) {
-      if (x > 0) sum += columns[static_cast<std::size_t>(clampCol(x + half))] -
-                        static_cast<std::uint64_t>(columns[static_cast<std::size_t>(clampCol(x - half - 1))]);
-      const auto mean = static_cast<std::uint32_t>((sum * inverse + (std::uint64_t{1} << 31)) >> 32);
-      const std::uint32_t drop = std::max((mean * relative) >> 8, absolute);
-      // Black when grey + drop < mean, written without a subtraction that could wrap.
-      b[x] = g[x] + drop < mean ? 0 : 255;
+      // The window about x covers padded columns x .. x + 2 half.
+      // Signed for the vector conversion to float: sums stay below 2^31 for windows up to
+      // the settings' 2047 px.
+      const float mean = static_cast<float>(static_cast<std::int32_t>(p[x + side] - p[x])) * inverseArea;
+      const float drop = std::max(offset * mean, contrast);
+      b[x] = static_cast<float>(g[x]) + drop < mean ? 0 : 255;
     }
   }
 }

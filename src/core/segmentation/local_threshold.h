@@ -4,8 +4,8 @@
 // dark card stays white where the frame is dim and a bright window or lit wall elsewhere
 // does not pull the threshold above it (uneven light, issue of real scenes).
 //
-// A pixel is black (0) when it is darker than its window's mean m by more than
-// max(offset * m, min_contrast) grey levels, white (255) otherwise. The relative part
+// A pixel is black (0) when it is darker than its window's mean m (not rounded) by more
+// than max(offset * m, min_contrast) grey levels, white (255) otherwise. The relative part
 // follows the light (a shadow scales grey levels); the absolute part keeps flat dark
 // areas, where noise swings about a low mean, white instead of speckled. So the black
 // pixels are those clearly darker than their neighbourhood: the card around the disk,
@@ -27,6 +27,7 @@ int localWindowPx(const BinarizationOptions& options, cv::Size size);
 // Buffers reused from frame to frame (no heap allocation once grown).
 struct LocalThresholdWorkspace {
   std::vector<std::uint32_t> column_sums;  // per column: the sum over the window's rows
+  std::vector<std::uint32_t> row_prefix;   // prefix sums of column_sums along the row
 };
 
 // `binary` as described above, CV_8UC1 of grey's size, keeping its allocation from call

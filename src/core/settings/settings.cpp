@@ -103,7 +103,7 @@ void visitSettings(Visitor& v, Settings& s) {
     });
     v.object("binarization", [&] {
       v.field("mode", p.binarization.mode);
-      v.field("window_px", p.binarization.window_px, 0, 4095);
+      v.field("window_px", p.binarization.window_px, 0, 2047);
       v.field("offset", p.binarization.offset, 0.0, 1.0);
       v.field("min_contrast", p.binarization.min_contrast, 0, 255);
     });
