@@ -3,6 +3,8 @@
 #include <atomic>
 #include <cerrno>
 #include <cstddef>
+#include <cstdio>
+#include <mutex>
 
 // Sanitizers replace malloc themselves (ASan's start-up dies in dlsym when the
 // executable interposes it first): their builds count nothing.
@@ -78,6 +80,13 @@ namespace imagepro::cli {
 bool allocationCountingAvailable() { return IMAGEPRO_COUNTING != 0; }
 
 void startCountingAllocations() {
+  // Said once, so a report's "allocations: 0" is not read as measured.
+  static std::once_flag told;
+  if (!allocationCountingAvailable())
+    std::call_once(told, [] {
+      std::fprintf(stderr, "note: this build does not count heap allocations (a sanitizer owns malloc, or "
+                           "IMAGEPRO_COUNT_ALLOCATIONS=OFF): allocation figures read 0\n");
+    });
   gCount.store(0);
   gCounting.store(true);
 }

@@ -16,7 +16,7 @@ namespace imagepro::cli {
 bool allocationCountingAvailable();
 void startCountingAllocations();
 // Stops counting and returns the number of allocations since the start (0 when
-// counting is not available).
+// counting is not available, which the first start says on stderr).
 std::uint64_t stopCountingAllocations();
 
 }  // namespace imagepro::cli
