@@ -65,11 +65,11 @@ int run(const Args& args) {
       std::printf("%s,%s,,,\n", frame.c_str(), std::string(statusName(status)).c_str());
       // A frame the source could not deliver (a missing or corrupt file) is named with its reason.
       const bool source_failed = !ok(result.status) && !source->lastError().empty();
-      if (source_failed) std::fprintf(stderr, "%s: %s\n", frame.c_str(), source->lastError().c_str());
-      if (first_problem.empty())
-        first_problem = frame + ": " + (source_failed ? source->lastError()
-                                                      : std::string(statusName(status)) + ": " +
-                                                            std::string(statusMessage(status)));
+      const std::string problem =
+          source_failed ? frameProblem(frame, source->lastError())
+                        : frame + ": " + std::string(statusName(status)) + ": " + std::string(statusMessage(status));
+      if (source_failed) std::fprintf(stderr, "%s\n", problem.c_str());
+      if (first_problem.empty()) first_problem = problem;
     }
     std::fflush(stdout);
   }

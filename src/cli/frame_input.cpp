@@ -119,6 +119,10 @@ std::unique_ptr<CameraSource> openCamera(const Args& args, const Settings& setti
   return camera;
 }
 
+std::string frameProblem(const std::string& frame, const std::string& error) {
+  return error.find(frame) != std::string::npos ? error : frame + ": " + error;
+}
+
 std::unique_ptr<FrameSource> openFrameInput(const Args& args, const Settings& settings) {
   const int inputs = args.has("virtual") + args.has("camera") + args.has("video") + !args.positionals().empty();
   if (inputs > 1) throw UsageError("give one input: image files, --virtual, --camera or --video");

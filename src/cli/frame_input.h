@@ -24,6 +24,10 @@ std::unique_ptr<FrameSource> openFrameInput(const Args& args, const Settings& se
 // cannot be opened (CameraNotFound ...).
 std::unique_ptr<CameraSource> openCamera(const Args& args, const Settings& settings);
 
+// A frame's source error for stderr: the error as it stands when it names the frame
+// already (a file's path does), else "frame: error".
+std::string frameProblem(const std::string& frame, const std::string& error);
+
 // The option names openFrameInput reads, for rejectUnknown and --help.
 inline const std::vector<std::string> kFrameInputOptions{"virtual", "frames", "camera", "size", "fps", "video"};
 inline constexpr const char* kFrameInputHelp =

@@ -213,7 +213,7 @@ TEST(CliThreshold, BadInputsAreNamedOnStderrAndExitOne) {
   // Every other input still processed, in order; folders and lists in natural / listed order.
   const std::vector<std::pair<std::string, std::string>> expected = {
       {bad[0], "FileNotFound"},  {good, "ok"},
-      {bad[1], "FileUnreadable"}, {bad[2], "FileUnreadable"},
+      {bad[1], "FileTruncated"}, {bad[2], "FileUnreadable"},
       {(dir / "two" / "b9.png").string(), "ok"}, {(dir / "two" / "b10.png").string(), "ok"},
       {bad[3], "FileUnreadable"}, {(dir / "two" / "b9.png").string(), "ok"},
       {kSamples + "/sample04_dim.png", "ok"}, {bad[4], "FileNotFound"}};
@@ -333,7 +333,7 @@ TEST(CliEdges, BadInputsAndRepeatedNames) {
   ASSERT_EQ(rows.size(), 6u) << r.out;
   EXPECT_EQ(rows[1], missing + ",FileNotFound,,,,");
   EXPECT_EQ(fields(rows[2])[1], "ok");
-  EXPECT_EQ(rows[3], (dir / "truncated.png").string() + ",FileUnreadable,,,,");
+  EXPECT_EQ(rows[3], (dir / "truncated.png").string() + ",FileTruncated,,,,");
   EXPECT_EQ(fields(rows[4])[1], "ok");
   EXPECT_EQ(rows[5], (dir / "truncated.pgm").string() + ",FileUnreadable,,,,");
   // Both frame.png files have their images: the second with _2.
@@ -524,7 +524,7 @@ TEST_F(CliLibrary, DetectFoldersListsAndOverlays) {
       {(dir / "b" / "shape.png").string(), "ok"},
       {(dir / "a" / "shape.png").string(), "ok"},
       {(dir / "empty").string(), "FileNotFound"},
-      {(dir / "truncated.png").string(), "FileUnreadable"},
+      {(dir / "truncated.png").string(), "FileTruncated"},
       {(dir / "truncated.pgm").string(), "FileUnreadable"}};
   for (std::size_t i = 0; i < expected.size(); ++i) {
     const auto f = fields(rows[1 + i]);
