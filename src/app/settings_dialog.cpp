@@ -6,6 +6,7 @@
 
 #include "app/panels.h"
 #include "app/settings_binder.h"
+#include "core/common/image_limits.h"
 #include "ui_settings_dialog.h"
 
 namespace imagepro::app {
@@ -62,8 +63,8 @@ void SettingsDialog::buildTarget() {
 void SettingsDialog::buildCamera() {
   auto* f = ui_->cameraForm;
   auto& b = *binder_;
-  f->addRow(tr("Width"), named(b.intSpin([](Settings& s) -> auto& { return s.camera.width; }, 1, 100000, kPx), "cameraWidth"));
-  f->addRow(tr("Height"), named(b.intSpin([](Settings& s) -> auto& { return s.camera.height; }, 1, 100000, kPx), "cameraHeight"));
+  f->addRow(tr("Width"), named(b.intSpin([](Settings& s) -> auto& { return s.camera.width; }, 1, static_cast<int>(kMaxImageSide), kPx), "cameraWidth"));
+  f->addRow(tr("Height"), named(b.intSpin([](Settings& s) -> auto& { return s.camera.height; }, 1, static_cast<int>(kMaxImageSide), kPx), "cameraHeight"));
   f->addRow(tr("Image plane distance d0"),
             named(b.doubleSpin([](Settings& s) -> auto& { return s.camera.image_plane_distance_mm; }, 0.001, kBig, 4, kMm),
                   "cameraD0", tr("Distance of the image plane from the projection centre (thesis 4.2)")));

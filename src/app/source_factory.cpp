@@ -1,28 +1,24 @@
 #include "app/source_factory.h"
 
-#include <filesystem>
-
 #include "core/camera/camera_settings.h"
 #include "core/camera/video_file.h"
-#include "core/source/image_file.h"
+#include "core/source/image_inputs.h"
 #include "core/source/sources.h"
 
 namespace imagepro::app {
 
 namespace {
 
-// Files as given; folders and list files expanded to their images.
+// Files as given; folders and list files expanded to their images (the CLI's rule).
 bool expandPaths(const QStringList& paths, std::vector<std::string>& files, std::string& error) {
-  for (const QString& p : paths) {
-    const std::string path = p.toStdString();
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec) || (!isImageFileName(path) && std::filesystem::is_regular_file(path, ec))) {
-      std::vector<std::string> listed;
-      if (!ok(listImageSequence(path, listed, error))) return false;
-      files.insert(files.end(), listed.begin(), listed.end());
-    } else {
-      files.push_back(path);  // a missing or unreadable file is reported by the source
+  std::vector<std::string> inputs;
+  for (const QString& p : paths) inputs.push_back(p.toStdString());
+  for (ImageInput& input : expandImageInputs(inputs)) {
+    if (!ok(input.status)) {
+      error = input.error;
+      return false;
     }
+    files.push_back(std::move(input.path));  // a missing or unreadable image is reported by the source
   }
   if (files.empty()) {
     error = "no image files given";

@@ -29,6 +29,8 @@ bool isFatalSourceError(Status s) {
   switch (s) {
     case Status::FileNotFound:
     case Status::FileUnreadable:
+    case Status::FileTruncated:
+    case Status::ImageTooLarge:
     case Status::CameraNotFound:
     case Status::CameraPermissionDenied:
     case Status::CameraBusy:
@@ -198,6 +200,7 @@ void Worker::doSetDataOut(const QString& path, ExistingFile existing, bool repla
     return;
   }
   emit dataOutChanged(QString::fromStdString(data_out_.path()));
+  if (!data_out_.notice().empty()) emit warningOccurred(QStringLiteral("Data Out: ") + QString::fromStdString(data_out_.notice()));
 }
 
 void Worker::setRunning(bool running) {

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "cli/command.h"
+#include "cli/image_inputs.h"
 #include "core/calibration/calibrate.h"
 #include "core/calibration/calibration_file.h"
-#include "core/source/image_file.h"
 
 namespace imagepro::cli {
 namespace {
@@ -40,8 +40,11 @@ int run(const Args& args) {
   const auto out = args.value("out");
   if (!out) throw UsageError("--out FILE is required (the camera section of the settings is written there)");
   if (args.positionals().empty()) throw UsageError("no images given (one to four images of the pattern)");
-  if (args.positionals().size() > kMaxImages)
-    throw UsageError("at most four images (thesis 4.6: one to four views of the pattern)");
+  // Folders and list files stand for their images, as in every other command.
+  const std::vector<ImageInput> inputs = expandImageInputs(args.positionals());
+  if (inputs.size() > kMaxImages)
+    throw UsageError("at most four images (thesis 4.6: one to four views of the pattern), " +
+                     std::to_string(inputs.size()) + " given");
   Settings settings = loadConfig(args);
   const bool text = format == "text";
 
@@ -49,10 +52,11 @@ int run(const Args& args) {
   // out; the others may still suffice.
   std::vector<cv::Mat> images;
   std::vector<std::string> names;
-  for (const std::string& path : args.positionals()) {
+  for (const ImageInput& input : inputs) {
+    const std::string& path = input.path;
     cv::Mat grey;
-    std::string error;
-    if (!ok(readGreyImage(path, grey, error))) {
+    std::string error = input.error;
+    if (!ok(input.status) || !ok(readGreyImageQuietly(path, grey, error))) {
       std::fprintf(stderr, "%s (skipped)\n", error.c_str());
       continue;
     }
@@ -114,6 +118,8 @@ const CommandRegistration kRegistration{{
     "calibrate",
     "lens distortion from one to four images of the calibration pattern (thesis 4.6)",
     "usage: imagepro-cli calibrate IMAGES... --out FILE [--config FILE] [--format text|json]\n\n"
+    "IMAGES are image files, folders (their images in natural order) or lists of paths\n"
+    "(text files, one path a line), one to four images in all.\n"
     "Finds k1, k2, p1, p2 of the distortion model (thesis eq. 4.7) from images of the\n"
     "calibration pattern (imagepro-cli pattern), best four: the pattern turned about +-45 deg\n"
     "about x and about y, its target near the image centre. Starts from zero distortion and\n"

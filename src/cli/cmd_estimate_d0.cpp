@@ -38,6 +38,7 @@ int run(const Args& args) {
   std::printf("frame,status,d0_mm,depth_mm,iterations\n");
   double sum = 0.0, sum2 = 0.0;
   int count = 0;
+  std::string first_problem;  // why the first frame without an estimate had none
   FrameResult result;
   for (;;) {
     if (engine.step(*source, result) == Status::EndOfStream) break;
@@ -62,6 +63,13 @@ int run(const Args& args) {
       ++count;
     } else {
       std::printf("%s,%s,,,\n", frame.c_str(), std::string(statusName(status)).c_str());
+      // A frame the source could not deliver (a missing or corrupt file) is named with its reason.
+      const bool source_failed = !ok(result.status) && !source->lastError().empty();
+      const std::string problem =
+          source_failed ? frameProblem(frame, source->lastError())
+                        : frame + ": " + std::string(statusName(status)) + ": " + std::string(statusMessage(status));
+      if (source_failed) std::fprintf(stderr, "%s\n", problem.c_str());
+      if (first_problem.empty()) first_problem = problem;
     }
     std::fflush(stdout);
   }
@@ -69,10 +77,10 @@ int run(const Args& args) {
     const double mean = sum / count;
     const double sd = count > 1 ? std::sqrt(std::max(0.0, (sum2 - count * mean * mean) / (count - 1))) : 0.0;
     std::fprintf(stderr, "d0 = %.6f mm (mean of %d frames, standard deviation %.6f mm)\n", mean, count, sd);
-  } else {
-    std::fprintf(stderr, "no frame gave an estimate\n");
+    return 0;
   }
-  return 0;
+  // Without an estimate the command has failed, whatever the reason: say the first one.
+  throw InputError("no frame gave an estimate of d0" + (first_problem.empty() ? "" : " (" + first_problem + ")"));
 }
 
 const CommandRegistration kRegistration{{
@@ -86,6 +94,8 @@ const CommandRegistration kRegistration{{
                 "until d0 changes by less than epsilon (eq. 4.2). The camera's other parameters\n"
                 "(pixel size, principal point, distortion) come from the settings.\n"
                 "Prints CSV: frame,status,d0_mm,depth_mm,iterations; the mean d0 goes to stderr.\n"
+                "A frame that cannot be read is named on stderr with its reason; when no frame\n"
+                "gives an estimate the command fails (exit code 1) and says why.\n"
                 "  --focal-length MM   the lens's focal length f (required)\n"
                 "  --epsilon MM        convergence threshold of eq. 4.2 (default 1e-6)\n"
                 "  --max-iterations N  give up (Diverged) after N steps (default 20)\n") +

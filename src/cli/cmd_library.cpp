@@ -2,10 +2,10 @@
 // (tables B.1 and B.2) as PNG files with a CSV of each image's parameters.
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
 #include "cli/command.h"
+#include "core/common/atomic_file.h"
 #include "core/ellipse/synthetic_library.h"
 
 namespace imagepro::cli {
@@ -26,10 +26,10 @@ int run(const Args& args) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec || !std::filesystem::is_directory(dir)) throw InputError("cannot create folder \"" + dir.string() + "\"");
+  // library.csv is written whole after the images, atomically: a run that fails or is
+  // killed part-way leaves the previous library.csv as it was, never a truncated one.
   const std::filesystem::path csvPath = dir / "library.csv";
-  std::ofstream csv(csvPath);
-  if (!csv) throw InputError("cannot write \"" + csvPath.string() + "\"");
-  csv << "file,shape,number,length_px,rotation_deg,aspect,centre_u,centre_v,semi_major_px,semi_minor_px\n";
+  std::string csv = "file,shape,number,length_px,rotation_deg,aspect,centre_u,centre_v,semi_major_px,semi_minor_px\n";
 
   cv::Mat image;
   for (const LibraryEntry& e : syntheticLibrary()) {
@@ -48,10 +48,10 @@ int run(const Args& args) {
     std::snprintf(row, sizeof row, "%s,%s,%d,%g,%g,%g,%g,%g,%g,%g\n", name.c_str(),
                   e.shape == LibraryShape::Rectangle ? "rectangle" : "ellipse", e.number, e.length_px,
                   e.rotation_deg, e.aspect, shape.cx, shape.cy, shape.a, shape.b);
-    csv << row;
+    csv += row;
   }
-  csv.close();
-  if (!csv) throw InputError("cannot write \"" + csvPath.string() + "\"");
+  std::string error;
+  if (!writeFileAtomically(csvPath.string(), csv, error)) throw InputError(error);
   std::fprintf(stderr, "wrote %zu images and library.csv to %s\n", syntheticLibrary().size(), dir.string().c_str());
   return 0;
 }
@@ -65,7 +65,8 @@ const CommandRegistration kRegistration{{
     "(319.5, 239.5) on black, and library.csv with each image's parameters: the\n"
     "table's length (rectangle width or ellipse major length, pixels), rotation (long\n"
     "axis from +u towards +v, degrees) and aspect ratio, and the shape's centre and\n"
-    "semi-axes (half sides of a rectangle) in pixels.\n"
+    "semi-axes (half sides of a rectangle) in pixels. library.csv is written last and\n"
+    "atomically: an earlier one stays whole until the new one replaces it.\n"
     "By default the images are binary (0/255, a pixel is white when its centre is\n"
     "inside the shape), exactly as in the thesis. For robustness measurements:\n"
     "  --grey       anti-aliased grey (8x8 samples per pixel), black 20, white 230\n"

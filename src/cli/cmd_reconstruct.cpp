@@ -93,7 +93,7 @@ int run(const Args& args) {
     }
     first = false;
     if (!ok(result.status) && !source->lastError().empty())
-      std::fprintf(stderr, "%s: %s\n", frame.c_str(), source->lastError().c_str());
+      std::fprintf(stderr, "%s\n", frameProblem(frame, source->lastError()).c_str());
     if (data_out.isOpen()) {
       std::string error;
       if (!data_out.write(result, error)) std::fprintf(stderr, "data out stopped: %s\n", error.c_str());

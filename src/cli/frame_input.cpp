@@ -1,10 +1,12 @@
 #include "cli/frame_input.h"
 
 #include <cstdio>
+#include <stdexcept>
 
 #include "cli/image_inputs.h"
 #include "core/camera/camera_settings.h"
 #include "core/camera/video_file.h"
+#include "core/common/image_limits.h"
 #include "core/source/sources.h"
 
 namespace imagepro::cli {
@@ -74,8 +76,13 @@ void parseSize(const std::string& text, int& width, int& height) {
       width = std::stoi(text.substr(0, x), &used_w);
       height = std::stoi(text.substr(x + 1), &used_h);
     }
-    if (x != std::string::npos && used_w == x && used_h == text.size() - x - 1 && width > 0 && height > 0) return;
-  } catch (const std::exception&) {
+    if (x != std::string::npos && used_w == x && used_h == text.size() - x - 1 && width > 0 && height > 0) {
+      if (const std::string problem = imageSizeProblem(width, height); !problem.empty())
+        throw UsageError("--size: " + problem);
+      return;
+    }
+  } catch (const std::invalid_argument&) {
+  } catch (const std::out_of_range&) {
   }
   throw UsageError("--size: \"" + text + "\" is not WIDTHxHEIGHT, e.g. 640x480");
 }
@@ -110,6 +117,10 @@ std::unique_ptr<CameraSource> openCamera(const Args& args, const Settings& setti
   applyStoredControls(*camera, settings.camera_source.controls, problems);
   for (const std::string& p : problems) std::fprintf(stderr, "warning: %s\n", p.c_str());
   return camera;
+}
+
+std::string frameProblem(const std::string& frame, const std::string& error) {
+  return error.find(frame) != std::string::npos ? error : frame + ": " + error;
 }
 
 std::unique_ptr<FrameSource> openFrameInput(const Args& args, const Settings& settings) {

@@ -9,7 +9,7 @@
 
 namespace imagepro::cli {
 
-// Options understood: positionals (images, folders, .txt lists), --virtual,
+// Options understood: positionals (images, folders, lists: core/source/image_inputs.h), --virtual,
 // --camera DEV [--size WxH] [--fps N], --video FILE, and --frames N (how many; the
 // virtual source defaults to 100, camera and video run until they end).
 // Throws UsageError when no input is given, InputError when it cannot be opened
@@ -24,10 +24,15 @@ std::unique_ptr<FrameSource> openFrameInput(const Args& args, const Settings& se
 // cannot be opened (CameraNotFound ...).
 std::unique_ptr<CameraSource> openCamera(const Args& args, const Settings& settings);
 
+// A frame's source error for stderr: the error as it stands when it names the frame
+// already (a file's path does), else "frame: error".
+std::string frameProblem(const std::string& frame, const std::string& error);
+
 // The option names openFrameInput reads, for rejectUnknown and --help.
 inline const std::vector<std::string> kFrameInputOptions{"virtual", "frames", "camera", "size", "fps", "video"};
 inline constexpr const char* kFrameInputHelp =
-    "input: IMAGES... (files, folders in natural order, or .txt lists of paths)\n"
+    "input: IMAGES... (files, folders in natural order, or lists of paths: any other text file,\n"
+    "          one path a line)\n"
     "       or --virtual [--frames N] (the Virtual source of the settings, default 100 frames)\n"
     "       or --camera /dev/videoN [--size WxH] [--fps N] [--frames N] (a V4L2 camera; default size\n"
     "          and rate the settings' camera_source, or the camera model's size, 25 frames/s; its\n"

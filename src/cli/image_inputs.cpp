@@ -4,34 +4,11 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 
 #include "core/source/image_file.h"
 
 namespace imagepro::cli {
-
-std::vector<ImageInput> expandImageInputs(const std::vector<std::string>& inputs) {
-  std::vector<ImageInput> out;
-  std::vector<std::string> listed;
-  for (const std::string& input : inputs) {
-    std::error_code ec;
-    const bool folder = std::filesystem::is_directory(input, ec);
-    const bool list = !folder && std::filesystem::path(input).extension() == ".txt";
-    if (!folder && !list) {
-      out.push_back({input, Status::Ok, {}});
-      continue;
-    }
-    std::string error;
-    const Status status = listImageSequence(input, listed, error);
-    if (!ok(status)) {
-      out.push_back({input, status, error});
-      continue;
-    }
-    for (std::string& path : listed) out.push_back({std::move(path), Status::Ok, {}});
-  }
-  return out;
-}
 
 DecoderMessagesSilenced::DecoderMessagesSilenced() {
   std::fflush(stderr);

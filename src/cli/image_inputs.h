@@ -1,7 +1,8 @@
 #pragma once
 // Image inputs of the command line, shared by every command that reads image files:
-// folders and list files expanded to their images, images decoded without the
-// decoders' own messages on stderr, and output file names kept unique.
+// folders and list files expanded to their images (by the rule of
+// core/source/image_inputs.h, which the GUI's File source follows too), images decoded
+// without the decoders' own messages on stderr, and output file names kept unique.
 #include <opencv2/core.hpp>
 
 #include <set>
@@ -9,22 +10,12 @@
 #include <vector>
 
 #include "core/common/status.h"
+#include "core/source/image_inputs.h"
 
 namespace imagepro::cli {
 
-// One image to process, or an input that could not be expanded (status not Ok,
-// `error` naming it and the reason; `path` is the input as given).
-struct ImageInput {
-  std::string path;
-  Status status = Status::Ok;
-  std::string error;
-};
-
-// The command line's image inputs in order: an image file stays itself (a missing or
-// corrupt one is found when it is read), a folder becomes its images in natural
-// order, a .txt file the images it lists. An empty or unlistable folder or list is
-// one entry with FileNotFound / FileUnreadable.
-std::vector<ImageInput> expandImageInputs(const std::vector<std::string>& inputs);
+using imagepro::expandImageInputs;
+using imagepro::ImageInput;
 
 // Keeps fd 2 on /dev/null while alive: OpenCV's image decoders and libpng print their
 // own lines on a corrupt file ("imdecode_(...)", "libpng error: ..."), which would

@@ -61,6 +61,7 @@ class FileTest : public QObject {
   void fileIsProcessedAndParametersShown();
   void optionChangeReprocessesTheFile();
   void folderIsPlayedInNaturalOrder();
+  void listFilePlaysInItsOrder();
   void missingFileShowsAnError();
   void droppedFilesAreOpenedAndRemembered();
  private:

@@ -81,6 +81,28 @@ void FileTest::folderIsPlayedInNaturalOrder() {
   QCOMPARE(w.frameView()->packet()->result.name, std::string("img10.png"));
 }
 
+// A list of paths plays in its order whatever its name ends in (the CLI's rule, one
+// function for both); a file that is neither an image nor text is refused by name.
+void FileTest::listFilePlaysInItsOrder() {
+  MainWindow& w = *window_;
+  const QString dir = scratchDir(QStringLiteral("list"));
+  QFile list(dir + QStringLiteral("/frames.lst"));
+  QVERIFY(list.open(QIODevice::WriteOnly));
+  list.write((kSamples + QStringLiteral("sample03_tilted50.png\n# a comment\n") + kSamples +
+              QStringLiteral("sample01_facing.png\n")).toUtf8());
+  list.close();
+  w.openPaths({list.fileName()});
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample01_facing.png"; }));
+  QTRY_VERIFY(!w.worker()->isRunning());
+
+  QFile binary(dir + QStringLiteral("/clip.mp4"));
+  QVERIFY(binary.open(QIODevice::WriteOnly));
+  binary.write(QByteArray("\0\0\0\x18" "ftypmp42", 12));
+  binary.close();
+  w.openPaths({binary.fileName(), kSamples + QStringLiteral("sample01_facing.png")});
+  QTRY_VERIFY_WITH_TIMEOUT(w.lastError().contains(QStringLiteral("clip.mp4: neither an image file")), 5000);
+}
+
 void FileTest::missingFileShowsAnError() {
   MainWindow& w = *window_;
   const QString missing = scratchDir(QStringLiteral("missing")) + QStringLiteral("/nothing-here.png");

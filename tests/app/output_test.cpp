@@ -3,6 +3,7 @@
 #include <QFile>
 #include <QFileInfo>
 #include <QImage>
+#include <QStatusBar>
 #include <QTest>
 
 #include "app/frame_view.h"
@@ -110,6 +111,22 @@ void OutputTest::dataOutNeverOverwritesSilently() {
   w.stopDataOut();
   QTRY_VERIFY(w.dataOutPath().isEmpty());
   QCOMPARE(readLines(path).front(), QStringLiteral("precious"));
+  // A row a crash cut off: appending starts on a new line and the status bar says the row is lost.
+  {
+    QFile f(path);
+    QVERIFY(f.open(QIODevice::Append));
+    f.write("7,ok,1.5");
+  }
+  w.startDataOut(path, ExistingFile::Append, false);
+  QTRY_COMPARE_WITH_TIMEOUT(w.dataOutPath(), path, 5000);
+  QTRY_VERIFY_WITH_TIMEOUT(w.statusBar()->currentMessage().contains(QStringLiteral("last row was cut off")), 5000);
+  w.stopDataOut();
+  QTRY_VERIFY(w.dataOutPath().isEmpty());
+  {
+    QFile f(path);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    QCOMPARE(f.readAll(), QByteArray("precious\n7,ok,1.5\n"));  // the next row will start on a line of its own
+  }
   // Replacing only when asked for.
   w.startDataOut(path, ExistingFile::Fail, true);
   QTRY_COMPARE_WITH_TIMEOUT(w.dataOutPath(), path, 5000);

@@ -77,6 +77,12 @@ void SettingsFileTest::malformedFileNamesTheKey() {
   QVERIFY(!w.loadSettingsFile(dir + QStringLiteral("/type.json")));
   QVERIFY2(w.lastError().contains(QStringLiteral("width")), qPrintable(w.lastError()));
 
+  // A number beyond a double: the key is named and the window goes on (it aborted once).
+  writeText(dir + QStringLiteral("/overflow.json"), R"({"camera": {"image_plane_distance_mm": 1e400}})");
+  QVERIFY(!w.loadSettingsFile(dir + QStringLiteral("/overflow.json")));
+  QVERIFY2(w.lastError().contains(QStringLiteral("camera.image_plane_distance_mm")), qPrintable(w.lastError()));
+  QCOMPARE(json(w.settings()), before);
+
   writeText(dir + QStringLiteral("/broken.json"), "{ not json");
   QVERIFY(!w.loadSettingsFile(dir + QStringLiteral("/broken.json")));
   QVERIFY(!w.lastError().isEmpty());

@@ -28,18 +28,12 @@ using test::cli;
 using test::CliRun;
 using test::freshDir;
 using test::lines;
+using test::readText;
+using test::writeText;
 using json = nlohmann::json;
 
 // The thesis camera's lens (thesis 4.6), as the renderer's settings.
 constexpr double kK1 = -2.05e-7, kK2 = -1.21e-13, kP1 = 3.39e-6, kP2 = 2.56e-6;
-
-void writeText(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
-
-std::string readText(const fs::path& path) {
-  std::string text, error;
-  readWholeFile(path.string(), text, error);
-  return text;
-}
 
 std::string lensJson(const std::string& extra = "") {
   char camera[256];
@@ -218,6 +212,37 @@ TEST_F(CliCalibrate, ExitCodes) {
   r = cli("calibrate " + joined(views_) + "--out " + (dir_ / "no" / "camera.json").string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find((dir_ / "no" / "camera.json").string()), std::string::npos) << r.err;
+}
+
+// Folders and list files stand for their images as in every other command, and a
+// corrupt or cut-off PNG among them is one line of ours, never the decoder's own.
+TEST_F(CliCalibrate, FoldersAndListsExpandAndDecodersStayQuiet) {
+  const fs::path views = dir_ / "views";
+  fs::create_directories(views);
+  fs::copy_file(views_[0], views / "a.png");
+  fs::copy_file(views_[1], views / "b.png");
+  const std::string png = readText(views_[2]);
+  writeText(views / "c.png", png.substr(0, png.size() / 2));  // cut off half-way
+  writeText(dir_ / "list.txt", "views/a.png\n# the other view\n" + views_[1] + "\n");
+  const std::string out = " --out " + (dir_ / "camera.json").string();
+
+  CliRun r = cli("calibrate " + views.string() + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("calibrating from 2 image(s)"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find((views / "c.png").string() + ": the file ends before its image does"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("libpng"), std::string::npos) << r.err;
+  EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+
+  r = cli("calibrate " + (dir_ / "list.txt").string() + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("calibrating from 2 image(s)"), std::string::npos) << r.out;
+
+  // Four at most, counted after the folders are expanded.
+  r = cli("calibrate " + views.string() + " " + (dir_ / "list.txt").string() + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("at most four images"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("5 given"), std::string::npos) << r.err;
 }
 
 // An A4-sized sheet (11 x 7 spacings, as `pattern --paper A4` prints it) at 800 mm: its

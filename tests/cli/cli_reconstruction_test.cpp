@@ -176,12 +176,14 @@ TEST(CliReconstruction, EstimateD0RecoversTheRenderedImagePlaneDistance) {
     EXPECT_LE(std::stoi(fields[4]), 5) << rows[i];
   }
   EXPECT_NE(r.err.find("d0 = 12.0"), std::string::npos) << r.err;
-  // A frame without a target is a row with the error's name.
+  // A frame without a target is a row with the error's name; with no estimate at all
+  // the command has failed, and says why.
   r = cli("render --out " + dir.string() + " --frames 1 --mode grey --clutter 6 --pose 0,0,0,3000,0,1000 --name blank");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = cli("estimate-d0 --focal-length " + std::string(f) + " " + (dir / "blank.png").string());
-  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_EQ(lines(r.out).at(1), "blank.png,NoTarget,,,");
+  EXPECT_NE(r.err.find("no frame gave an estimate of d0 (blank.png: NoTarget: "), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -46,6 +47,17 @@ inline CliRun cli(const std::string& args) { return runProgram(IMAGEPRO_CLI, arg
 #ifdef IMAGEPRO_STUDIES
 inline CliRun studies(const std::string& args) { return runProgram(IMAGEPRO_STUDIES, args); }
 #endif
+
+inline void writeText(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+// The file's content, empty when it cannot be read.
+inline std::string readText(const std::filesystem::path& path) {
+  std::string text, error;
+  readWholeFile(path.string(), text, error);
+  return text;
+}
 
 inline std::vector<std::string> lines(const std::string& text) {
   std::vector<std::string> out;

@@ -1,5 +1,7 @@
 #include "core/camera/camera_source.h"
 
+#include "core/common/image_limits.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -131,6 +133,11 @@ Status CameraSource::openAndNegotiate() {
     choice.width = static_cast<int>(fmt.fmt.pix.width);  // no size listed or asked for: keep the current one
     choice.height = static_cast<int>(fmt.fmt.pix.height);
   }
+  // Neither asked for nor accepted beyond what a frame may hold: the buffers and the
+  // pipeline's images would take gigabytes before anything failed.
+  if (const std::string problem = imageSizeProblem(choice.width, choice.height);
+      choice.width > 0 && choice.height > 0 && !problem.empty())
+    return fail(Status::ImageTooLarge, dev + ": " + std::string(statusMessage(Status::ImageTooLarge)) + ": " + problem);
   fmt = v4l2_format{};
   fmt.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
   fmt.fmt.pix.width = static_cast<std::uint32_t>(std::max(0, choice.width));
@@ -158,6 +165,10 @@ Status CameraSource::openAndNegotiate() {
   format_.format_adjusted = fmt.fmt.pix.pixelformat != choice.fourcc;
   const bool size_asked = request_.width > 0 && request_.height > 0;
   format_.size_adjusted = size_asked && (format_.width != request_.width || format_.height != request_.height);
+  if (const std::string problem = imageSizeProblem(format_.width, format_.height);
+      format_.width > 0 && format_.height > 0 && !problem.empty())
+    return fail(Status::ImageTooLarge, dev + ": the driver answered the request for " + asked +
+                                           " with a size beyond what a frame may hold: " + problem);
   const std::size_t min_line = minimumBytesPerLine(*got, format_.width);
   format_.bytes_per_line = fmt.fmt.pix.bytesperline == 0 ? min_line : fmt.fmt.pix.bytesperline;
   if (format_.width <= 0 || format_.height <= 0 || format_.bytes_per_line < min_line)

@@ -2,9 +2,13 @@
 
 #include <ostream>
 
+#include "core/common/image_limits.h"
+
 namespace imagepro {
 
 namespace {
+static_assert(kMaxImageSide == 16384 && kMaxImagePixels == 64 << 20, "ImageTooLarge's message names the bounds");
+
 struct StatusText {
   std::string_view name;
   std::string_view message;
@@ -16,6 +20,8 @@ StatusText text(Status s) {
     case Status::EmptyFrame: return {"EmptyFrame", "the frame is empty or not 8-bit grey"};
     case Status::FileNotFound: return {"FileNotFound", "the file does not exist"};
     case Status::FileUnreadable: return {"FileUnreadable", "the file cannot be read or decoded as an image"};
+    case Status::FileTruncated: return {"FileTruncated", "the image file ends before its image does (cut off in a copy or a download): only part of the image is there"};
+    case Status::ImageTooLarge: return {"ImageTooLarge", "the image is larger than a frame may be (at most 16384 pixels a side and 64 megapixels)"};
     case Status::FileNotWritable: return {"FileNotWritable", "the file cannot be written"};
     case Status::EndOfStream: return {"EndOfStream", "the source has no more frames"};
     case Status::ThresholdUndefined: return {"ThresholdUndefined", "the histogram has fewer than two grey levels, so no threshold separates two classes"};

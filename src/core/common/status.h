@@ -14,6 +14,8 @@ enum class Status : std::uint8_t {
   EmptyFrame,          // no pixels (zero size) or wrong pixel type
   FileNotFound,
   FileUnreadable,      // exists but cannot be read or decoded
+  FileTruncated,       // an image file that ends before its image does (a cut-off copy)
+  ImageTooLarge,       // an image size beyond what a frame may hold (core/common/image_limits.h)
   FileNotWritable,     // cannot be written (permissions, disk full, missing folder)
   EndOfStream,         // a finite source has no more frames
   // segmentation

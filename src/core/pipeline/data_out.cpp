@@ -20,6 +20,18 @@ std::string numberedName(const std::filesystem::path& p, int k) {
   return (p.parent_path() / (p.stem().string() + "-" + std::to_string(k) + p.extension().string())).string();
 }
 
+enum class Ending : std::uint8_t { Whole, CutRow, CutHeader };
+
+// How an existing data-out file ends: on a line end, or inside a row (or inside the
+// header, when not even its first line is whole) that a killed write left behind.
+Ending howItEnds(std::FILE* f) {
+  if (std::fseek(f, -1, SEEK_END) != 0 || std::fgetc(f) == '\n') return Ending::Whole;
+  std::rewind(f);
+  for (int c; (c = std::fgetc(f)) != EOF;)
+    if (c == '\n') return Ending::CutRow;
+  return Ending::CutHeader;
+}
+
 }  // namespace
 
 DataOut::~DataOut() { close(); }
@@ -67,17 +79,39 @@ Status DataOut::open(const std::string& path, ExistingFile existing, std::string
         break;
     }
   }
-  const bool empty = !append || fs::file_size(target, ec) == 0;
-  // "a" never truncates; "wx" refuses to replace a file that appeared meanwhile.
-  file_ = std::fopen(target.c_str(), append ? "a" : "wx");
+  lost_rows_ = 0;
+  notice_.clear();
+  bool empty = !append || fs::file_size(target, ec) == 0;
+  // "a" never truncates (every write goes to the end, reads may go anywhere); "wx"
+  // refuses to replace a file that appeared meanwhile.
+  file_ = std::fopen(target.c_str(), append ? "a+" : "wx");
   if (!file_) {
     error = target + ": cannot open for writing: " + std::strerror(errno);
     return Status::FileNotWritable;
   }
   path_ = target;
-  if (empty) {
-    const std::string h = header() + "\n";
-    if (std::fputs(h.c_str(), file_) < 0 || std::fflush(file_) != 0) {
+  std::string start;  // what goes before the first row
+  if (!empty) {
+    switch (howItEnds(file_)) {
+      case Ending::Whole: break;
+      case Ending::CutRow:
+        start = "\n";
+        lost_rows_ = 1;
+        notice_ = target + ": its last row was cut off (an earlier run stopped while writing it); that row is "
+                           "lost, new rows start on a line of their own";
+        break;
+      case Ending::CutHeader:
+        start = "\n";
+        empty = true;  // the header again, whole
+        notice_ = target + ": its header was cut off (an earlier run stopped while writing it); the header is "
+                           "written again on a line of its own";
+        break;
+    }
+    std::fseek(file_, 0, SEEK_END);  // an update stream needs a seek between reading and writing
+  }
+  if (empty) start += header() + "\n";
+  if (!start.empty()) {
+    if (std::fputs(start.c_str(), file_) < 0 || std::fflush(file_) != 0) {
       error = target + ": cannot write: " + std::strerror(errno);
       close();
       return Status::FileNotWritable;

@@ -3,6 +3,8 @@
 // docs/conventions.md, followed by the timestamp, the estimated (searched) and detected
 // regions and the per-stage times. Each row is flushed as it is written, so a killed
 // process loses at most the frame in flight; an existing file is never overwritten.
+// Appending to a file whose last row a killed run left cut off starts on a new line
+// (the cut-off row is counted lost, never glued to the next one).
 #include <cstdio>
 #include <string>
 
@@ -29,6 +31,10 @@ class DataOut {
   Status open(const std::string& path, ExistingFile existing, std::string& error);
   bool isOpen() const { return file_ != nullptr; }
   const std::string& path() const { return path_; }
+  // Rows of an earlier run that open() found cut off at the end of the file it appends
+  // to (0 or 1), and a sentence saying so for the user (empty when none).
+  int lostRows() const { return lost_rows_; }
+  const std::string& notice() const { return notice_; }
   // Writes and flushes one row; false (with the file closed) when the disk refuses.
   bool write(const FrameResult& result, std::string& error);
   void close();
@@ -39,6 +45,8 @@ class DataOut {
  private:
   std::FILE* file_ = nullptr;
   std::string path_;
+  int lost_rows_ = 0;
+  std::string notice_;
 };
 
 }  // namespace imagepro

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/common/atomic_file.h"
+#include "core/common/image_limits.h"
 #include "core/settings/enum_names.h"
 
 namespace imagepro {
@@ -25,8 +26,8 @@ template <class Visitor>
 void visitSettings(Visitor& v, Settings& s) {
   v.object("camera", [&] {
     CameraModel& c = s.camera;
-    v.field("width", c.width, 1, 100000);
-    v.field("height", c.height, 1, 100000);
+    v.field("width", c.width, 1, static_cast<int>(kMaxImageSide));
+    v.field("height", c.height, 1, static_cast<int>(kMaxImageSide));
     v.field("pixel_size_mm", c.pixel_size_mm, 1e-9, kInf);
     v.field("image_plane_distance_mm", c.image_plane_distance_mm, 1e-9, kInf);
     v.field("principal_point_px", c.principal_point_px, -kInf, kInf);
@@ -90,8 +91,8 @@ void visitSettings(Visitor& v, Settings& s) {
   v.object("camera_source", [&] {
     CameraSourceOptions& o = s.camera_source;
     v.field("device", o.device);
-    v.field("width", o.width, 0, 100000);
-    v.field("height", o.height, 0, 100000);
+    v.field("width", o.width, 0, static_cast<int>(kMaxImageSide));
+    v.field("height", o.height, 0, static_cast<int>(kMaxImageSide));
     v.field("frame_rate_hz", o.frame_rate_hz, 0.0, 1e6);
     v.field("controls", o.controls);
   });
@@ -292,10 +293,12 @@ class Reader {
   static T number(const json& j, const std::string& where, T lo, T hi) {
     if constexpr (std::is_integral_v<T>) {
       if (!j.is_number_integer()) fail(where, "expected a whole number");
-      const auto v = j.get<long long>();
-      if (v < static_cast<long long>(lo) || v > static_cast<long long>(hi))
-        fail(where, "value " + std::to_string(v) + " out of range [" + std::to_string(lo) + ", " +
-                        std::to_string(hi) + "]");
+      // Above 2^63-1 JSON's unsigned numbers do not fit a long long: out of range as they stand.
+      const bool huge = j.is_number_unsigned() &&
+                        j.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<long long>::max());
+      const long long v = huge ? 0 : j.get<long long>();
+      if (huge || v < static_cast<long long>(lo) || v > static_cast<long long>(hi))
+        fail(where, "value " + j.dump() + " out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
       return static_cast<T>(v);
     } else {
       if (!j.is_number()) fail(where, "expected a number");
@@ -354,14 +357,88 @@ class Writer {
   std::vector<json*> stack_;
 };
 
+// Finds where in the document parsing stopped: a second, SAX pass that keeps the key
+// path ("camera.principal_point_px[1]") of the value being read when the error comes.
+class ErrorLocator {
+ public:
+  using string_t = json::string_t;
+  std::string where;
+  int id = 0;  // the nlohmann exception's id (406: a number too large for a double)
+  std::string what;
+
+  bool null() { return value(); }
+  bool boolean(bool) { return value(); }
+  bool number_integer(json::number_integer_t) { return value(); }
+  bool number_unsigned(json::number_unsigned_t) { return value(); }
+  bool number_float(json::number_float_t, const string_t&) { return value(); }
+  bool string(string_t&) { return value(); }
+  bool binary(json::binary_t&) { return value(); }
+  bool start_object(std::size_t) {
+    levels_.push_back({false, {}, 0});
+    return true;
+  }
+  bool key(string_t& k) {
+    levels_.back().key = k;
+    return true;
+  }
+  bool end_object() { return endLevel(); }
+  bool start_array(std::size_t) {
+    levels_.push_back({true, {}, 0});
+    return true;
+  }
+  bool end_array() { return endLevel(); }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) {
+    for (const Level& l : levels_) {
+      if (l.array) where += "[" + std::to_string(l.index) + "]";
+      else if (!l.key.empty()) where += (where.empty() ? "" : ".") + l.key;
+    }
+    id = e.id;
+    what = e.what();
+    return false;
+  }
+
+ private:
+  struct Level {
+    bool array;
+    std::string key;
+    std::size_t index;
+  };
+  bool value() {
+    if (!levels_.empty() && levels_.back().array) ++levels_.back().index;
+    return true;
+  }
+  bool endLevel() {
+    levels_.pop_back();
+    return value();
+  }
+  std::vector<Level> levels_;
+};
+
+// "[json.exception.parse_error.101] parse error at line 1 ..." -> "parse error at line 1 ...".
+std::string withoutExceptionTag(const std::string& what) {
+  const auto end = what.rfind("] ", what.find(' '));
+  return what.rfind("[json.exception.", 0) == 0 && end != std::string::npos ? what.substr(end + 2) : what;
+}
+
+// The problem that stopped parsing, named by the key it was reading.
+std::string parseProblem(std::string_view json_text, const std::string& what) {
+  ErrorLocator locator;
+  json::sax_parse(json_text, &locator);
+  const std::string message = locator.what.empty() ? what : locator.what;
+  if (locator.id == 406 && !locator.where.empty())
+    return locator.where + ": " + withoutExceptionTag(message) + " (larger than any number a double holds)";
+  return std::string("not valid JSON") + (locator.where.empty() ? "" : " at " + locator.where) + ": " +
+         withoutExceptionTag(message);
+}
+
 }  // namespace
 
 Status settingsFromJson(std::string_view json_text, Settings& out, std::string& error) {
   json root;
   try {
     root = json::parse(json_text);
-  } catch (const json::parse_error& e) {
-    error = std::string("not valid JSON: ") + e.what();
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number beyond a double
+    error = parseProblem(json_text, e.what());
     return Status::InvalidSettings;
   }
   if (!root.is_object()) {
@@ -373,8 +450,14 @@ Status settingsFromJson(std::string_view json_text, Settings& out, std::string& 
     Reader reader(root);
     visitSettings(reader, parsed);
     reader.finishObject();
+    // Each side is bounded by its key; together they may still be more than a frame can hold.
+    if (const std::string problem = imageSizeProblem(parsed.camera.width, parsed.camera.height); !problem.empty())
+      throw SettingsKeyError("camera.width, camera.height: " + problem);
   } catch (const SettingsKeyError& e) {
     error = e.what();
+    return Status::InvalidSettings;
+  } catch (const json::exception& e) {  // a value nlohmann cannot convert: no key to blame, but no abort
+    error = std::string("cannot read the settings: ") + withoutExceptionTag(e.what());
     return Status::InvalidSettings;
   }
   out = parsed;

@@ -11,6 +11,8 @@
 #include <fstream>
 #include <iterator>
 
+#include "core/common/image_limits.h"
+
 namespace imagepro {
 
 namespace fs = std::filesystem;
@@ -27,6 +29,78 @@ std::string trim(const std::string& s) {
   if (begin == std::string::npos) return {};
   const auto end = s.find_last_not_of(" \t\r\n");
   return s.substr(begin, end - begin + 1);
+}
+
+// What the container of a PNG or JPEG file says before any pixel is decoded: its
+// size, and whether the file holds all of it. Decoders fill a cut-off JPEG with grey
+// (and libpng may stop part-way) and hand back a partial image as if it were whole.
+struct Container {
+  bool known = false;      // a PNG or JPEG whose structure could be walked
+  bool truncated = false;  // the file ends before the image's end marker
+  std::int64_t width = 0, height = 0;
+};
+
+std::uint32_t bigEndian(const std::vector<unsigned char>& b, std::size_t at, int bytes) {
+  std::uint32_t v = 0;
+  for (int i = 0; i < bytes; ++i) v = (v << 8) | b[at + static_cast<std::size_t>(i)];
+  return v;
+}
+
+// PNG: the signature, then chunks (length, type, data, CRC) up to IEND.
+Container pngContainer(const std::vector<unsigned char>& b) {
+  static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  Container c;
+  if (b.size() < 8 || !std::equal(kSignature, kSignature + 8, b.begin())) return c;
+  c.known = true;
+  for (std::size_t at = 8;;) {
+    if (b.size() - at < 12) break;
+    const std::uint64_t length = bigEndian(b, at, 4);
+    const std::string type(b.begin() + static_cast<std::ptrdiff_t>(at + 4), b.begin() + static_cast<std::ptrdiff_t>(at + 8));
+    // Chunk types are four letters and IHDR comes first: anything else is corrupt, not cut off.
+    const bool letters = std::all_of(type.begin(), type.end(), [](char ch) { return std::isalpha(static_cast<unsigned char>(ch)) != 0; });
+    if (!letters || (at == 8 && type != "IHDR")) return Container{};
+    if (b.size() - at - 12 < length) break;
+    if (type == "IHDR" && length >= 8) {
+      c.width = bigEndian(b, at + 8, 4);
+      c.height = bigEndian(b, at + 12, 4);
+    }
+    if (type == "IEND") return c;
+    at += 12 + length;
+  }
+  c.truncated = true;
+  return c;
+}
+
+// JPEG: marker segments up to EOI; after each start of scan the entropy-coded data
+// runs to the next marker that is neither a stuffed 0xFF00 nor a restart marker.
+Container jpegContainer(const std::vector<unsigned char>& b) {
+  Container c;
+  if (b.size() < 3 || b[0] != 0xFF || b[1] != 0xD8 || b[2] != 0xFF) return c;
+  c.known = true;
+  std::size_t at = 2;
+  while (at < b.size()) {
+    if (b[at] != 0xFF) return Container{};  // not a marker: corrupt, which the decoder reports
+    while (at < b.size() && b[at] == 0xFF) ++at;  // fill bytes
+    if (at >= b.size()) break;
+    const unsigned char marker = b[at++];
+    if (marker == 0xD9) return c;                                       // EOI: the image is whole
+    if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD8)) continue;  // no length
+    if (b.size() - at < 2) break;
+    const std::size_t length = bigEndian(b, at, 2);
+    if (length < 2 || b.size() - at < length) break;
+    const bool frame_header = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+    if (frame_header && length >= 7) {
+      c.height = bigEndian(b, at + 3, 2);
+      c.width = bigEndian(b, at + 5, 2);
+    }
+    at += length;
+    if (marker != 0xDA) continue;
+    while (at + 1 < b.size() && !(b[at] == 0xFF && b[at + 1] != 0x00 && !(b[at + 1] >= 0xD0 && b[at + 1] <= 0xD7)))
+      ++at;
+    if (at + 1 >= b.size()) break;
+  }
+  c.truncated = true;
+  return c;
 }
 
 }  // namespace
@@ -85,6 +159,19 @@ Status readGreyImage(const std::string& path, cv::Mat& grey, std::string& error)
     error = path + ": empty file";
     return Status::FileUnreadable;
   }
+  Container container = pngContainer(bytes);
+  if (!container.known) container = jpegContainer(bytes);
+  if (container.truncated) {
+    error = path + ": the file ends before its image does (" + std::to_string(bytes.size()) +
+            " bytes; cut off in a copy or a download?)";
+    return Status::FileTruncated;
+  }
+  if (container.width > 0 && container.height > 0) {  // refused before the decoder allocates it
+    if (const std::string problem = imageSizeProblem(container.width, container.height); !problem.empty()) {
+      error = path + ": " + problem;
+      return Status::ImageTooLarge;
+    }
+  }
   cv::Mat decoded;
   try {
     decoded = cv::imdecode(bytes, cv::IMREAD_ANYDEPTH | cv::IMREAD_ANYCOLOR);
@@ -98,6 +185,10 @@ Status readGreyImage(const std::string& path, cv::Mat& grey, std::string& error)
   if (decoded.empty()) {
     error = path + ": not a readable image (unknown format or corrupt data)";
     return Status::FileUnreadable;
+  }
+  if (const std::string problem = imageSizeProblem(decoded.cols, decoded.rows); !problem.empty()) {
+    error = path + ": " + problem;
+    return Status::ImageTooLarge;
   }
   std::string reason;
   const Status s = toGrey8(decoded, grey, reason);

@@ -3,8 +3,10 @@
 // BMP, JPEG and TIFF through OpenCV, delivered as 8-bit grey. Colour is converted to
 // grey (ITU-R 601 weights), 16-bit is scaled to 8-bit (v / 257, so 65535 -> 255) and
 // floating point is taken as 0..1. Nothing here throws: a missing file is
-// FileNotFound, anything else that cannot be read is FileUnreadable, and `error`
-// names the file and the reason.
+// FileNotFound, a PNG or JPEG that ends before its image does (which the decoders
+// would hand back partly grey) is FileTruncated, an image beyond 16384 pixels a side
+// or 64 megapixels (core/common/image_limits.h) is ImageTooLarge, anything else that
+// cannot be read is FileUnreadable, and `error` names the file and the reason.
 #include <opencv2/core.hpp>
 
 #include <string>

@@ -160,6 +160,34 @@ TEST_F(CameraFixture, NegotiationRefused) {
   }
 }
 
+// A size beyond what a frame may hold is refused by name before any buffer is mapped:
+// whether it is the one asked for (a device that lists it) or the driver's answer.
+TEST_F(CameraFixture, ImageTooLargeIsRefusedBeforeStreaming) {
+  device.formats[0].sizes.push_back({100000, 100000, {{1, 25}}});
+  {
+    CameraSource camera(requestFor(device, 100000, 100000), device);
+    EXPECT_EQ(camera.start(), Status::ImageTooLarge);
+    EXPECT_NE(camera.lastError().find("100000x100000 is more than 16384 pixels a side"), std::string::npos)
+        << camera.lastError();
+    EXPECT_NE(camera.lastError().find(device.path), std::string::npos) << camera.lastError();
+    EXPECT_NE(device.current.width, 100000u);  // never asked of the driver
+  }
+  expectReleased();
+  device.adjust_format = [](v4l2_pix_format& pix) {
+    pix.width = 12000;
+    pix.height = 9000;
+    pix.bytesperline = 24000;
+    pix.sizeimage = 24000 * 9000;
+  };
+  {
+    CameraSource camera(requestFor(device), device);
+    EXPECT_EQ(camera.start(), Status::ImageTooLarge);
+    EXPECT_NE(camera.lastError().find("with a size beyond what a frame may hold: 12000x9000 is 102 megapixels"), std::string::npos)
+        << camera.lastError();
+  }
+  expectReleased();
+}
+
 TEST_F(CameraFixture, TooFewBuffersOrNoBandwidth) {
   {
     device.max_buffers = 1;

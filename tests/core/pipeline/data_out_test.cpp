@@ -78,6 +78,51 @@ TEST(DataOut, NeverOverwritesAnExistingFile) {
   EXPECT_EQ(text.rfind("precious\n3,ok,", 0), 0u);  // appended, no second header
 }
 
+// A run killed while writing a row leaves the file without a final line end. Appending
+// to it starts on a new line, so the next row is whole and readable, and the cut-off
+// row is counted lost; a whole file is appended to as it stands, with nothing lost.
+TEST(DataOut, AppendAfterACutOffRowStartsOnANewLine) {
+  const fs::path dir = freshDir("dataout_cut");
+  const fs::path p = dir / "d.csv";
+  const std::string header = DataOut::header() + "\n";
+  const std::string whole = DataOut::row(okFrame(0)) + "\n";
+  const std::string cut = DataOut::row(okFrame(1)).substr(0, 20);
+  std::string err;
+  ASSERT_TRUE(writeFileAtomically(p.string(), header + whole + cut, err));
+  DataOut out;
+  ASSERT_EQ(out.open(p.string(), ExistingFile::Append, err), Status::Ok) << err;
+  EXPECT_EQ(out.lostRows(), 1);
+  EXPECT_NE(out.notice().find("d.csv: its last row was cut off"), std::string::npos) << out.notice();
+  ASSERT_TRUE(out.write(okFrame(2), err));
+  out.close();
+  EXPECT_EQ(slurp(p), header + whole + cut + "\n" + DataOut::row(okFrame(2)) + "\n");
+
+  // Appended again, the file now ends whole: nothing more is lost.
+  ASSERT_EQ(out.open(p.string(), ExistingFile::Append, err), Status::Ok) << err;
+  EXPECT_EQ(out.lostRows(), 0);
+  EXPECT_TRUE(out.notice().empty());
+  ASSERT_TRUE(out.write(okFrame(3), err));
+  out.close();
+  EXPECT_EQ(slurp(p), header + whole + cut + "\n" + DataOut::row(okFrame(2)) + "\n" + DataOut::row(okFrame(3)) + "\n");
+}
+
+// Killed while writing even the header: the header is written again, whole, on a line
+// of its own, so the rows below it have their column names.
+TEST(DataOut, AppendAfterACutOffHeaderWritesItAgain) {
+  const fs::path dir = freshDir("dataout_cut_header");
+  const fs::path p = dir / "d.csv";
+  const std::string cut = DataOut::header().substr(0, 15);
+  std::string err;
+  ASSERT_TRUE(writeFileAtomically(p.string(), cut, err));
+  DataOut out;
+  ASSERT_EQ(out.open(p.string(), ExistingFile::Append, err), Status::Ok) << err;
+  EXPECT_EQ(out.lostRows(), 0);
+  EXPECT_NE(out.notice().find("header was cut off"), std::string::npos) << out.notice();
+  ASSERT_TRUE(out.write(okFrame(0), err));
+  out.close();
+  EXPECT_EQ(slurp(p), cut + "\n" + DataOut::header() + "\n" + DataOut::row(okFrame(0)) + "\n");
+}
+
 TEST(DataOut, UnwritableFolderIsANamedError) {
   DataOut out;
   std::string err;

@@ -117,6 +117,61 @@ TEST(Settings, ErrorsNameTheKey) {
   EXPECT_NE(loadError(R"({"pipeline": {"reconstruction": {"distortion_correction": 1}}})").find("true or false"), std::string::npos);
 }
 
+// A number JSON cannot hold (beyond a double) is the key's error, not an abort.
+TEST(Settings, NumberBeyondADoubleNamesTheKey) {
+  std::string err = loadError(R"({"camera": {"image_plane_distance_mm": 1e400}})");
+  EXPECT_EQ(err.rfind("camera.image_plane_distance_mm: ", 0), 0u) << err;
+  EXPECT_NE(err.find("1e400"), std::string::npos) << err;
+  err = loadError(R"({"camera": {"principal_point_px": [1, -1e999]}})");
+  EXPECT_EQ(err.rfind("camera.principal_point_px[1]: ", 0), 0u) << err;
+  err = loadError(R"({"pipeline": {"tracking": {"min_r": 0.5, "degree": 1E+400}}})");
+  EXPECT_EQ(err.rfind("pipeline.tracking.degree: ", 0), 0u) << err;
+  // Through the file loader too, with the file's name first.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / "settings_overflow";
+  fs::create_directories(dir);
+  const std::string path = (dir / "huge.json").string();
+  ASSERT_TRUE(writeFileAtomically(path, "{\n  \"camera\": {\"image_plane_distance_mm\": 1e400}\n}\n", err)) << err;
+  Settings s;
+  s.camera.image_plane_distance_mm = 12.0;
+  EXPECT_EQ(loadSettings(path, s, err), Status::InvalidSettings);
+  EXPECT_EQ(err.rfind(path + ": camera.image_plane_distance_mm: ", 0), 0u) << err;
+  EXPECT_DOUBLE_EQ(s.camera.image_plane_distance_mm, 12.0);
+}
+
+// A syntax error says where the document broke, by key as well as line and column.
+TEST(Settings, SyntaxErrorNamesWhereItBroke) {
+  const std::string err = loadError("{\"target\": {\"radius_mm\": 10,, }}");
+  EXPECT_EQ(err.rfind("not valid JSON at target.radius_mm: ", 0), 0u) << err;
+  EXPECT_NE(err.find("line 1"), std::string::npos) << err;
+  EXPECT_EQ(err.find("[json.exception"), std::string::npos) << err;
+  EXPECT_EQ(loadError("").rfind("not valid JSON: ", 0), 0u);
+}
+
+// A whole number beyond what the key takes is reported as written, not wrapped round.
+TEST(Settings, HugeWholeNumbersAreReportedAsGiven) {
+  std::string err = loadError(R"({"camera": {"width": 18446744073709551615}})");
+  EXPECT_NE(err.find("camera.width: value 18446744073709551615 out of range"), std::string::npos) << err;
+  err = loadError(R"({"camera_source": {"controls": {"gain": 9223372036854775808}}})");
+  EXPECT_NE(err.find("camera_source.controls.gain: value 9223372036854775808 out of range"), std::string::npos) << err;
+  err = loadError(R"({"virtual": {"seed": 4294967296}})");
+  EXPECT_NE(err.find("virtual.seed: value 4294967296 out of range"), std::string::npos) << err;
+}
+
+// The camera's image is bounded by what a V4L2 camera delivers and a frame's buffers
+// hold: each side by its key, and the two together.
+TEST(Settings, ImageSizeIsBounded) {
+  std::string err = loadError(R"({"camera": {"width": 100000, "height": 100000}})");
+  EXPECT_NE(err.find("camera.width: value 100000 out of range [1, 16384]"), std::string::npos) << err;
+  err = loadError(R"({"camera_source": {"height": 20000}})");
+  EXPECT_NE(err.find("camera_source.height: value 20000 out of range [0, 16384]"), std::string::npos) << err;
+  err = loadError(R"({"camera": {"width": 16384, "height": 16384}})");
+  EXPECT_EQ(err.rfind("camera.width, camera.height: 16384x16384 is 256 megapixels", 0), 0u) << err;
+  Settings s;
+  ASSERT_EQ(settingsFromJson(R"({"camera": {"width": 8192, "height": 8192}})", s, err), Status::Ok) << err;
+  EXPECT_EQ(s.camera.width, 8192);
+}
+
 TEST(Settings, FailedLoadLeavesSettingsUntouched) {
   Settings s;
   s.target.radius_mm = 42;

@@ -146,6 +146,54 @@ TEST(ImageFile, MissingFileIsNamed) {
   EXPECT_TRUE(read.empty());
 }
 
+// A PNG or JPEG cut off anywhere (in its header, its pixels, or just before its end
+// marker) is FileTruncated, named, with no image: decoders would hand back a partial
+// image (libjpeg fills the rest with grey) as if it were whole. The same bytes whole,
+// or with bytes after the end marker, read as usual.
+TEST(ImageFile, CutOffPngAndJpegAreTruncated) {
+  const fs::path dir = scratch("truncated");
+  cv::Mat smooth(96, 128, CV_8UC1);
+  for (int v = 0; v < smooth.rows; ++v)
+    for (int u = 0; u < smooth.cols; ++u) smooth.at<std::uint8_t>(v, u) = static_cast<std::uint8_t>(u + v);
+  for (const char* ext : {".png", ".jpg"}) {
+    std::vector<unsigned char> encoded;
+    ASSERT_TRUE(cv::imencode(ext, smooth, encoded));
+    cv::Mat read;
+    std::string error;
+    for (const std::size_t keep : {std::size_t{20}, encoded.size() / 3, encoded.size() * 9 / 10, encoded.size() - 1}) {
+      const fs::path cut = dir / ("cut" + std::to_string(keep) + ext);
+      writeBytes(cut, std::string(encoded.begin(), encoded.begin() + static_cast<long>(keep)));
+      EXPECT_EQ(readGreyImage(cut.string(), read, error), Status::FileTruncated) << cut;
+      EXPECT_NE(error.find(cut.string() + ": the file ends before its image does"), std::string::npos) << error;
+      EXPECT_TRUE(read.empty());
+    }
+    const fs::path whole = dir / (std::string("whole") + ext);
+    writeBytes(whole, std::string(encoded.begin(), encoded.end()) + "trailing bytes");
+    ASSERT_EQ(readGreyImage(whole.string(), read, error), Status::Ok) << error;
+    EXPECT_EQ(read.size(), smooth.size());
+  }
+}
+
+// The container's size is checked before decoding: a PNG that claims 100000 x 100000
+// pixels is ImageTooLarge at once, not gigabytes later.
+TEST(ImageFile, HugeDeclaredSizeIsImageTooLarge) {
+  const fs::path dir = scratch("too_large");
+  std::vector<unsigned char> encoded;
+  ASSERT_TRUE(cv::imencode(".png", testPattern(CV_8UC1), encoded));
+  // IHDR's width and height are the first 8 bytes of its data (offset 16); the CRC no
+  // longer matches, which is never looked at because the size is refused first.
+  for (int i = 0; i < 2; ++i) {
+    const std::uint32_t side = 100000;
+    for (int k = 0; k < 4; ++k) encoded[16 + 4 * i + k] = static_cast<unsigned char>(side >> (24 - 8 * k));
+  }
+  const fs::path huge = dir / "huge.png";
+  writeBytes(huge, std::string(encoded.begin(), encoded.end()));
+  cv::Mat read;
+  std::string error;
+  EXPECT_EQ(readGreyImage(huge.string(), read, error), Status::ImageTooLarge);
+  EXPECT_NE(error.find("huge.png: 100000x100000 is more than 16384 pixels a side"), std::string::npos) << error;
+}
+
 TEST(ImageFile, CorruptEmptyAndFolderAreUnreadable) {
   const fs::path dir = scratch("bad");
   cv::Mat read;
@@ -160,16 +208,6 @@ TEST(ImageFile, CorruptEmptyAndFolderAreUnreadable) {
   writeBytes(fake, std::string("\x89PNG\r\n\x1a\n", 8) + std::string(200, '\x55'));
   EXPECT_EQ(readGreyImage(fake.string(), read, error), Status::FileUnreadable);
   EXPECT_NE(error.find("fake.png"), std::string::npos);
-  // A real image cut short.
-  std::vector<unsigned char> encoded;
-  cv::imencode(".png", testPattern(CV_8UC1), encoded);
-  const fs::path cut = dir / "cut.png";
-  writeBytes(cut, std::string(encoded.begin(), encoded.begin() + static_cast<long>(encoded.size() / 3)));
-  EXPECT_EQ(readGreyImage(cut.string(), read, error), Status::FileUnreadable);
-  const fs::path cut_jpeg = dir / "cut.jpg";
-  cv::imencode(".jpg", testPattern(CV_8UC1), encoded);
-  writeBytes(cut_jpeg, std::string(encoded.begin(), encoded.begin() + 20));
-  EXPECT_EQ(readGreyImage(cut_jpeg.string(), read, error), Status::FileUnreadable);
   // An empty file.
   const fs::path empty = dir / "empty.png";
   writeBytes(empty, "");
