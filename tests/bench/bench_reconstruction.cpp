@@ -9,6 +9,7 @@
 #include "core/ellipse/direct_fit.h"
 #include "core/reconstruction/pose.h"
 #include "core/reconstruction/reconstruct.h"
+#include "core/reconstruction/refine.h"
 #include "core/reconstruction/undistort.h"
 #include "core/source/virtual_renderer.h"
 
@@ -92,6 +93,41 @@ void BM_PoseFromEllipse(benchmark::State& state) {
 }
 // centre_spot:0 takes the normal from the rim alone, 1 weighs the centre spot in (the default).
 BENCHMARK(BM_PoseFromEllipse)->ArgNames({"centre_spot"})->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// The whole reconstruction with refine_pose (refine.h) on, default mode, at the three
+// distances: the difference to BM_CropToPose/mm:D/mode:4/rethreshold:1 is the refinement's cost.
+void BM_CropToPoseRefined(benchmark::State& state) {
+  const Scene scene(static_cast<double>(state.range(0)), ContourMode::SubPixel);
+  ReconstructionConfig config = reconstructionConfig(scene.settings);
+  config.options.refine_pose = true;
+  ReconstructionWorkspace ws;
+  ReconstructionResult result;
+  for (auto _ : state) {
+    const Status s = reconstructTarget(config, scene.image, scene.detected, 128, ws, result);
+    if (!ok(s) || !ok(result.steps.refine)) state.SkipWithError("reconstruction or refinement failed");
+    benchmark::DoNotOptimize(result.pose);
+  }
+  state.counters["points"] = static_cast<double>(result.contour.size());
+}
+BENCHMARK(BM_CropToPoseRefined)->ArgNames({"mm"})->Arg(400)->Arg(800)->Arg(1200)->Unit(benchmark::kMicrosecond);
+
+// The refinement alone, from the analytic pose of the frame (what refine_pose adds).
+void BM_RefinePose(benchmark::State& state) {
+  const Scene scene(static_cast<double>(state.range(0)), ContourMode::SubPixel);
+  ReconstructionWorkspace ws;
+  ReconstructionResult result;
+  reconstructTarget(reconstructionConfig(scene.settings), scene.image, scene.detected, 128, ws, result);
+  PoseRefinement refined;
+  for (auto _ : state) {
+    const Status s = refinePose(scene.settings.camera, scene.settings.target, result.contour_ideal,
+                                result.centre_spot_ideal, result.offset_spot_ideal, result.pose, refined);
+    if (!ok(s)) state.SkipWithError("refinement failed");
+    benchmark::DoNotOptimize(refined.pose);
+  }
+  state.counters["points"] = static_cast<double>(result.contour_ideal.size());
+  state.counters["steps"] = refined.iterations;
+}
+BENCHMARK(BM_RefinePose)->ArgNames({"mm"})->Arg(400)->Arg(800)->Arg(1200)->Unit(benchmark::kMicrosecond);
 
 void BM_UndistortPoint(benchmark::State& state) {
   CameraModel cam;

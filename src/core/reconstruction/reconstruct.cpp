@@ -6,6 +6,7 @@
 
 #include "core/ellipse/direct_fit.h"
 #include "core/reconstruction/pose.h"
+#include "core/reconstruction/refine.h"
 #include "core/reconstruction/undistort.h"
 
 namespace imagepro {
@@ -158,6 +159,7 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
                                       out.offset_spot_ideal, out.pose, config.options.centre_spot_normal,
                                       &out.candidates);
   if (ok(poseStatus)) poseStatus = choosePose(config, expected, out);
+  if (ok(poseStatus) && config.options.refine_pose) out.steps.refine = refineReconstructedPose(config, out);
   if (!ok(poseStatus)) return fail(out.steps.pose, poseStatus);
   out.steps.pose = Status::Ok;
   out.status = Status::Ok;

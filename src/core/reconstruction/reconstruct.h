@@ -28,6 +28,7 @@ struct ReconstructionSteps {
   Status spots = Status::Stopped;
   Status fit = Status::Stopped;
   Status pose = Status::Stopped;
+  Status refine = Status::Stopped;  // Stopped also when refine_pose is off; its failure keeps the analytic pose
 };
 
 struct ReconstructionResult {

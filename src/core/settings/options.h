@@ -135,6 +135,7 @@ struct ReconstructionOptions {
   // Weigh the centre spot's polar line into the plane's normal: near head-on the rim alone
   // fixes the normal poorly (docs/reconstruction.md, docs/accuracy.md).
   bool centre_spot_normal = true;
+  bool refine_pose = false;  // Levenberg-Marquardt steps against the rim's points and the spots (refine.h)
   int crop_margin_px = 4;
   // Sub-pixel contour mode only (the pixel modes keep the thesis's rule, unchecked).
   // Self-check (docs/reconstruction.md): a pose that puts a spot's image further than this
