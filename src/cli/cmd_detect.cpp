@@ -145,7 +145,7 @@ const CommandRegistration kRegistration{{
     "connectivity and ellipse). The target is the accepted ellipse that holds the\n"
     "target's two spots; without one, the best ellipse (lowest fit error, or highest\n"
     "Bennett score) unless ellipse.require_target_spots. IMAGES are image files,\n"
-    "folders (their images in natural order) or .txt lists of paths.\n"
+    "folders (their images in natural order) or text files listing paths.\n"
     "  --method M    bennett or direct-fit (default: the settings' ellipse method)\n"
     "  --format F    csv (default): frame,status,cx,cy,a,b,angle_deg,fit_error,method\n"
     "                with status ok, AmbiguousTarget (one row per target) or the\n"

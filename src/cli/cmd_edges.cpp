@@ -136,7 +136,7 @@ const CommandRegistration kRegistration{{
     "usage: imagepro-cli edges [--config FILE] [--out DIR] [--method M] [--connectivity C] IMAGES...\n\n"
     "For each image: the threshold of the settings (thesis 2.3), binarization (eq. 2.1),\n"
     "edge detection (2.4) and connectivity analysis (2.5). IMAGES are image files,\n"
-    "folders (their images in natural order) or .txt lists of paths. Prints one CSV row\n"
+    "folders (their images in natural order) or text files listing paths. Prints one CSV row\n"
     "per image:\n"
     "  frame,status,threshold,edge_pixels,paths,longest_path\n"
     "status is ok or the error's name; a column is empty when its stage did not run\n"

@@ -194,7 +194,7 @@ const CommandRegistration kRegistration{{
                 "       or --virtual [--frames N] [--noise SIGMA] [--blur-exposure S [--subframes N]]\n"
                 "          (the Virtual source's pendulum of the settings, grey, default 250 frames, noise 3)\n"
                 "       or --video FILE, --camera /dev/videoN [--size WxH] [--fps N] [--frames N],\n"
-                "          or IMAGES... (files, folders, .txt lists), reconstructed frame by frame") +
+                "          or IMAGES... (files, folders, text files listing paths), reconstructed frame by frame") +
         "\n\nThe period comes from the translations over time, the pivot and the length from the\n"
         "constrained sphere fit of thesis eqs. 5.2-5.6, g from eq. 5.1 with the period reduced to\n"
         "a small swing's (the exact pendulum's amplitude correction), each with its uncertainty.\n"

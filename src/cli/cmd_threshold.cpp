@@ -84,7 +84,7 @@ const CommandRegistration kRegistration{{
     "Prints the threshold t of each image (thesis 2.3); binarization makes the pixels\n"
     "above t white (eq. 2.1). at-orig and at-mod are Kittler and Illingworth's minimum\n"
     "error threshold in its original and incremental forms: the same t, different speed.\n"
-    "IMAGES are image files, folders (their images in natural order) or .txt lists of paths.\n"
+    "IMAGES are image files, folders (their images in natural order) or text files listing paths.\n"
     "  --method M   manual, at-orig or at-mod (default: the settings' threshold method)\n"
     "  --value N    the manual threshold, 0..255; selects manual when --method is not given\n"
     "  --format F   text (default): \"IMAGE: t\", or the error's name (and what it means);\n"
