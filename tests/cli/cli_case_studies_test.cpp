@@ -18,12 +18,7 @@ using test::cli;
 using test::CliRun;
 using test::freshDir;
 using test::lines;
-
-std::string fileText(const fs::path& path) {
-  std::string text, e;
-  EXPECT_TRUE(readWholeFile(path.string(), text, e)) << e;
-  return text;
-}
+using test::readText;
 
 TEST(CliPendulum, WritesPlotsOnlyWhereAsked) {
   const fs::path dir = freshDir("cli_pendulum_plots");
@@ -62,11 +57,11 @@ TEST(CliTwoTargets, CsvReplacesTheOldFileWhole) {
   fs::create_hard_link(csv, other_name);
   const CliRun r = cli("two-targets --virtual --frames 2 --position 1 --csv " + csv.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto rows = lines(fileText(csv));
+  const auto rows = lines(readText(csv));
   ASSERT_EQ(rows.size(), 5u);  // header, 2 frames x 2 corrections
   EXPECT_EQ(rows[0], "frame,position,lighting,correction,status,distance_mm,angle_deg,distance_error_mm,angle_error_deg");
   EXPECT_EQ(rows[1].rfind("0,1,natural,on,ok,", 0), 0u) << rows[1];
-  EXPECT_EQ(fileText(other_name), "old content\n");
+  EXPECT_EQ(readText(other_name), "old content\n");
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);  // no temporary file left
 
   // A CSV that cannot be written: one line naming it, exit 1.
