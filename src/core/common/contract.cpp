@@ -1,4 +1,4 @@
-#include "common/contract.h"
+#include "core/common/contract.h"
 
 #include <cstdio>
 #include <cstdlib>
