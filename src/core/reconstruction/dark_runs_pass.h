@@ -1,9 +1,9 @@
-// The text of the spot search's row scan, included by features.cpp once per vector width
+// The text of the spot search's row scan, included by spot_search.cpp once per vector width
 // (SSE2: 16 pixels per comparison; AVX2: 32) inside a namespace that defines
 //   struct Ops { kBlock; Level, level(cut), value(level); Block, load(p), min(a, b);
 //                dark(block, level); darkMask(p, level) };
 // dark and darkMask give bit i set when pixel i of the block (at p) is <= level. Private to
-// features.cpp: no include guard, no declarations of its own outside the namespace.
+// spot_search.cpp: no include guard, no declarations of its own outside the namespace.
 
 // The first x in [x, x1] with row[x] <= level (Dark) or row[x] > level (!Dark), x1 + 1 if
 // none: whole blocks of kBlock pixels are passed over when none of them qualifies. The

@@ -4,6 +4,8 @@
 // and re-thresholded on its own histogram (None, Manual, AT-Orig, AT-Mod, thesis fig. 2.8),
 // then the rim's contour points and the two spots are taken from it. All positions are
 // image pixels as seen (distorted); the distortion correction comes after.
+// One file per step: crop.cpp (targetCrop, rethresholdCrop), contour.cpp (extractContour and
+// its modes), spot_search.cpp (extractSpots).
 //
 // Contour modes (the thesis names them, appendix A, without defining them):
 //  * 8 points ORG: from the detected centre, walk pixel by pixel along the 8 directions

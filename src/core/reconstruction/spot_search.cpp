@@ -1,0 +1,370 @@
+// Feature extraction: the search for the two spots and their centroids (features.h).
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+#include "core/common/simd_level.h"
+#include "core/reconstruction/feature_geometry.h"
+#include "core/reconstruction/features.h"
+#include "core/reconstruction/spot_model.h"
+
+namespace imagepro {
+
+using feature_detail::ceilToInt;
+using feature_detail::EllipseForm;
+using feature_detail::floorToInt;
+
+namespace {
+
+constexpr double kSpotSearchScale = 0.85;  // spots are searched inside 0.85 of the rim
+constexpr int kSpotBoxGrowPx = 3;
+constexpr double kSpotRimClearancePx = 2.5;  // spot centroids ignore pixels this near the rim
+
+// The spot search's row scan (dark_runs_pass.h), once per vector width: the widest the
+// processor has is taken at run time (core/common/simd_level.h); every width finds the
+// same runs.
+#if defined(__SSE2__)
+namespace sse2 {
+struct Ops {
+  static constexpr int kBlock = 16;
+  using Level = __m128i;
+  using Block = __m128i;
+  static Level level(std::uint8_t cut) { return _mm_set1_epi8(static_cast<char>(cut)); }
+  static std::uint8_t value(const Level& l) { return static_cast<std::uint8_t>(_mm_cvtsi128_si32(l)); }
+  static Block load(const std::uint8_t* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); }
+  static Block min(const Block& a, const Block& b) { return _mm_min_epu8(a, b); }
+  // g <= level exactly when min(g, level) == g.
+  static unsigned dark(const Block& g, const Level& l) {
+    return static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_min_epu8(g, l), g)));
+  }
+  static unsigned darkMask(const std::uint8_t* p, const Level& l) { return dark(load(p), l); }
+};
+#include "core/reconstruction/dark_runs_pass.h"
+}  // namespace sse2
+
+#pragma GCC push_options
+#pragma GCC target("avx2")
+namespace avx2 {
+struct Ops {
+  static constexpr int kBlock = 32;
+  using Level = __m256i;
+  using Block = __m256i;
+  static Level level(std::uint8_t cut) { return _mm256_set1_epi8(static_cast<char>(cut)); }
+  static std::uint8_t value(const Level& l) {
+    return static_cast<std::uint8_t>(_mm_cvtsi128_si32(_mm256_castsi256_si128(l)));
+  }
+  static Block load(const std::uint8_t* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
+  static Block min(const Block& a, const Block& b) { return _mm256_min_epu8(a, b); }
+  static unsigned dark(const Block& g, const Level& l) {
+    return static_cast<unsigned>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_min_epu8(g, l), g)));
+  }
+  static unsigned darkMask(const std::uint8_t* p, const Level& l) { return dark(load(p), l); }
+};
+#include "core/reconstruction/dark_runs_pass.h"
+}  // namespace avx2
+#pragma GCC pop_options
+#else
+namespace scalar {
+struct Ops {
+  static constexpr int kBlock = 16;
+  using Level = std::uint8_t;
+  using Block = std::array<std::uint8_t, kBlock>;
+  static Level level(std::uint8_t cut) { return cut; }
+  static std::uint8_t value(Level l) { return l; }
+  static Block load(const std::uint8_t* p) {
+    Block b;
+    std::memcpy(b.data(), p, kBlock);
+    return b;
+  }
+  static Block min(const Block& a, const Block& b) {
+    Block m;
+    for (int i = 0; i < kBlock; ++i) m[i] = std::min(a[i], b[i]);
+    return m;
+  }
+  static unsigned dark(const Block& g, Level l) {
+    unsigned mask = 0;
+    for (int i = 0; i < kBlock; ++i) mask |= (g[i] <= l ? 1u : 0u) << i;
+    return mask;
+  }
+  static unsigned darkMask(const std::uint8_t* p, Level l) { return dark(load(p), l); }
+};
+#include "core/reconstruction/dark_runs_pass.h"
+}  // namespace scalar
+#endif
+
+struct DarkRowScan {
+  int (*runs)(const std::uint8_t*, int, int, std::uint8_t, int, int*);
+  bool (*any)(const std::uint8_t* const*, int, int, int, std::uint8_t, int);
+};
+
+DarkRowScan darkRowScanForThisProcessor() {
+#if defined(__SSE2__)
+  if (simdLevel() == SimdLevel::Avx2) return {&avx2::darkRuns, &avx2::anyDark};
+  return {&sse2::darkRuns, &sse2::anyDark};
+#else
+  return {&scalar::darkRuns, &scalar::anyDark};
+#endif
+}
+
+// Sums of g and of i g over the n pixels g = p[i]. With SSE2 sixteen pixels per step, g
+// summed by _mm_sad_epu8 and i g by _mm_madd_epi16, in blocks of kMomentBlock pixels: i
+// then fits an int16 lane and a block's i g (below 255 * 2048^2 / 2) an int32.
+void rowMoments(const std::uint8_t* p, int n, std::int64_t& sumG, std::int64_t& sumIG) {
+  constexpr int kMomentBlock = 2048;
+  std::int64_t g = 0, ig = 0;
+  int i = 0;
+#if defined(__SSE2__)
+  const __m128i zero = _mm_setzero_si128(), eight = _mm_set1_epi16(8), sixteen = _mm_set1_epi16(16);
+  for (int start = 0; start + 16 <= n; start += kMomentBlock) {
+    const int end = std::min(n, start + kMomentBlock);
+    __m128i index = _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7);  // i - start
+    __m128i sums = zero, moments = zero;
+    for (i = start; i + 16 <= end; i += 16) {
+      const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + i));
+      sums = _mm_add_epi64(sums, _mm_sad_epu8(v, zero));
+      moments = _mm_add_epi32(moments, _mm_madd_epi16(_mm_unpacklo_epi8(v, zero), index));
+      moments = _mm_add_epi32(moments, _mm_madd_epi16(_mm_unpackhi_epi8(v, zero), _mm_add_epi16(index, eight)));
+      index = _mm_add_epi16(index, sixteen);
+    }
+    std::array<std::int64_t, 2> s{};
+    std::array<std::int32_t, 4> m{};
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(s.data()), sums);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(m.data()), moments);
+    const std::int64_t block_g = s[0] + s[1];
+    g += block_g;
+    ig += static_cast<std::int64_t>(m[0]) + m[1] + m[2] + m[3] + static_cast<std::int64_t>(start) * block_g;
+    if (i < end) break;  // a tail of fewer than 16 pixels: taken below
+  }
+  if (i < n && n >= 16) {
+    // The tail as the last 16 pixels of the row, those before i masked off: lane l is
+    // pixel at + l, so i g = l g + at g.
+    const int at = n - 16;
+    const __m128i lanes = _mm_setr_epi8(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m128i keep = _mm_cmpgt_epi8(lanes, _mm_set1_epi8(static_cast<char>(i - at - 1)));
+    const __m128i v = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + at)), keep);
+    const __m128i sums = _mm_sad_epu8(v, zero);
+    const __m128i moments =
+        _mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi8(v, zero), _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7)),
+                      _mm_madd_epi16(_mm_unpackhi_epi8(v, zero), _mm_setr_epi16(8, 9, 10, 11, 12, 13, 14, 15)));
+    std::array<std::int64_t, 2> s{};
+    std::array<std::int32_t, 4> m{};
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(s.data()), sums);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(m.data()), moments);
+    const std::int64_t tail_g = s[0] + s[1];
+    g += tail_g;
+    ig += static_cast<std::int64_t>(m[0]) + m[1] + m[2] + m[3] + static_cast<std::int64_t>(at) * tail_g;
+    i = n;
+  }
+#endif
+  for (; i < n; ++i) {
+    g += p[i];
+    ig += static_cast<std::int64_t>(i) * p[i];
+  }
+  sumG = g;
+  sumIG = ig;
+}
+
+int findRoot(std::vector<SpotRun>& runs, int i) {
+  while (runs[i].parent != i) {
+    runs[i].parent = runs[runs[i].parent].parent;
+    i = runs[i].parent;
+  }
+  return i;
+}
+
+}  // namespace
+
+Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& detected,
+                    const TargetGeometry& target, FeatureWorkspace& ws, SpotFeatures& spots) {
+  spots.candidates = 0;
+  if (grey.empty() || grey.type() != CV_8UC1 || ws.threshold < 0 || ws.crop != crop) return Status::EmptyFrame;
+  const EllipseForm inner(detected, kSpotSearchScale);
+  // Spots are cut at the middle of the crop's two class means rather than at the threshold
+  // itself: a minimum-error threshold near one class's level (as under blur) would swell
+  // or shrink them, and merge two spots seen close together.
+  const double bright = ws.bright_mean;
+  const auto spotLevel = static_cast<std::uint8_t>(std::clamp(floorToInt(0.5 * (ws.dark_mean + ws.bright_mean)), 0, 255));
+  std::vector<SpotRun>& runs = ws.runs;
+  runs.clear();
+  std::vector<int>& bounds = ws.runBounds;
+  bounds.resize(static_cast<std::size_t>(crop.width) + 2);  // a row's runs at most
+  const DarkRowScan scan = darkRowScanForThisProcessor();
+  // Black runs inside the search ellipse, row by row; each run is joined to the
+  // 8-connected runs of the row above. Rows are first tested kGroup at a time for any dark
+  // pixel over the union of their spans (their minimum, one comparison per block for all of
+  // them): most rows of the disk have none, and a group without one has no runs.
+  constexpr int kGroup = 4;
+  // The group's span: the search ellipse's left crossing is convex and its right one concave
+  // in y, so over a group they reach beyond their values at its end rows only about the
+  // ellipse's leftmost or rightmost point, where its full width is taken; a pixel more either
+  // side covers rounding. A wider span only sends more groups to the row-by-row search.
+  const double halfWidth = std::sqrt(inner.R / (inner.P * inner.R - inner.Q * inner.Q));
+  const double yLeftmost = inner.cy + inner.Q * halfWidth / inner.R;
+  const double yRightmost = inner.cy - inner.Q * halfWidth / inner.R;
+  std::array<const std::uint8_t*, kGroup> groupRows{};
+  std::size_t prevBegin = 0, prevEnd = 0;
+  for (int r0 = 0; r0 < crop.height; r0 += kGroup) {
+    const int n = std::min(kGroup, crop.height - r0);
+    const int yA = crop.y + r0, yB = yA + n - 1;
+    double leftA, rightA, leftB, rightB;
+    if (n == kGroup && inner.rowCrossings(yA, leftA, rightA) && inner.rowCrossings(yB, leftB, rightB)) {
+      double left = std::min(leftA, leftB), right = std::max(rightA, rightB);
+      if (yLeftmost > yA - 1 && yLeftmost < yB + 1) left = inner.cx - halfWidth;
+      if (yRightmost > yA - 1 && yRightmost < yB + 1) right = inner.cx + halfWidth;
+      const int x0 = std::max(floorToInt(left) - 1, crop.x) - crop.x;
+      const int x1 = std::min(ceilToInt(right) + 1, crop.x + crop.width - 1) - crop.x;
+      for (int k = 0; k < n; ++k) groupRows[k] = grey.ptr<std::uint8_t>(yA + k) + crop.x;
+      if (x0 > x1 || !scan.any(groupRows.data(), n, x0, x1, spotLevel, -crop.x)) {
+        prevBegin = prevEnd = runs.size();  // rows without runs
+        continue;
+      }
+    }
+    for (int k = 0; k < n; ++k) {
+      const int r = r0 + k, y = crop.y + r;
+      const std::size_t rowBegin = runs.size();
+      double xl, xr;
+      int count = 0;
+      if (inner.rowCrossings(y, xl, xr)) {
+        const int x0 = std::max(ceilToInt(xl), crop.x) - crop.x;
+        const int x1 = std::min(floorToInt(xr), crop.x + crop.width - 1) - crop.x;
+        const std::uint8_t* row = grey.ptr<std::uint8_t>(y) + crop.x;
+        count = x0 <= x1 ? scan.runs(row, x0, x1, spotLevel, -crop.x, bounds.data()) : 0;
+      }
+      for (int i = 0; i < count; ++i) {
+        const int start = bounds[2 * i], x = bounds[2 * i + 1] + 1;
+        const int id = static_cast<int>(runs.size());
+        runs.push_back({r, start, x - 1, id});
+        for (std::size_t p = prevBegin; p < prevEnd; ++p) {
+          if (runs[p].x0 <= x && runs[p].x1 >= start - 1) {
+            const int a = findRoot(runs, static_cast<int>(p)), b = findRoot(runs, id);
+            if (a != b) runs[std::max(a, b)].parent = std::min(a, b);
+          }
+        }
+      }
+      prevBegin = rowBegin;
+      prevEnd = runs.size();
+    }
+  }
+
+  // Components: area and box of every set of joined runs.
+  std::vector<int>& componentOf = ws.componentOf;
+  std::vector<SpotComponent>& components = ws.components;
+  componentOf.assign(runs.size(), -1);
+  components.clear();
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const int root = findRoot(runs, static_cast<int>(i));
+    const SpotRun& run = runs[i];
+    if (componentOf[root] < 0) {
+      componentOf[root] = static_cast<int>(components.size());
+      components.push_back({0, run.x0, run.row, run.x1, run.row});
+    }
+    SpotComponent& c = components[componentOf[root]];
+    c.area += run.x1 - run.x0 + 1;
+    c.x0 = std::min(c.x0, run.x0);
+    c.x1 = std::max(c.x1, run.x1);
+    c.y0 = std::min(c.y0, run.row);
+    c.y1 = std::max(c.y1, run.row);
+  }
+  // Of spot size: between 1/5 and 5 times the expected area.
+  const double expected =
+      M_PI * std::pow(target.spot_radius_mm / target.radius_mm, 2) * detected.a * detected.b;
+  const double minArea = std::max(2.0, 0.2 * expected), maxArea = 5.0 * expected + 4.0;
+  std::array<SpotComponent, 2> kept{};
+  int accepted = 0;
+  for (const SpotComponent& c : components) {
+    if (c.area < minArea || c.area > maxArea) continue;
+    if (accepted < 2) kept[accepted] = c;
+    ++accepted;
+  }
+  spots.candidates = accepted;
+  if (accepted < 2) {
+    // Too small or faint to be cut at the mid level: where the geometry puts them.
+    std::array<cv::Rect, 2> boxes;
+    if (!spotBoxesByModel(grey, detected, target, bright, ws.dark_mean, boxes)) return Status::SpotsNotFound;
+    for (int k = 0; k < 2; ++k)
+      kept[k] = {boxes[k].area(), boxes[k].x - crop.x, boxes[k].y - crop.y, boxes[k].x + boxes[k].width - 1 - crop.x,
+                 boxes[k].y + boxes[k].height - 1 - crop.y};
+    accepted = 2;
+  }
+  if (accepted > 2) return Status::AmbiguousSpots;
+
+  // Darkness-weighted centroids over each box grown by a few pixels, leaving out what lies
+  // near or beyond the rim (the dark card would pull a spot seen close to it, as on a target
+  // seen obliquely).
+  const EllipseForm rim(detected, 1.0);
+  const double rhoMax = std::max(0.5, 1.0 - kSpotRimClearancePx / detected.b);
+  const double rho2Max = rhoMax * rhoMax;
+  std::array<Eigen::Vector2d, 2> centroid;
+  for (int k = 0; k < 2; ++k) {
+    const SpotComponent& cmp = kept[k];
+    const cv::Rect box = cv::Rect(crop.x + cmp.x0 - kSpotBoxGrowPx, crop.y + cmp.y0 - kSpotBoxGrowPx,
+                                  cmp.x1 - cmp.x0 + 1 + 2 * kSpotBoxGrowPx,
+                                  cmp.y1 - cmp.y0 + 1 + 2 * kSpotBoxGrowPx) &
+                         cv::Rect(0, 0, grey.cols, grey.rows);
+    // The ellipse is convex: with the box's corners inside, every pixel is.
+    const int bx1 = box.x + box.width - 1, by1 = box.y + box.height - 1;
+    const bool boxInside = rim.rho2(box.x, box.y) < rho2Max && rim.rho2(bx1, box.y) < rho2Max &&
+                           rim.rho2(box.x, by1) < rho2Max && rim.rho2(bx1, by1) < rho2Max;
+    // The local white level: the box's border pixels inside the rim.
+    double borderSum = 0.0;
+    int borderCount = 0;
+    for (int y = box.y; y < box.y + box.height; ++y) {
+      const std::uint8_t* row = grey.ptr<std::uint8_t>(y);
+      const bool edgeRow = y == box.y || y == box.y + box.height - 1;
+      for (int x = box.x; x < box.x + box.width; x += edgeRow ? 1 : std::max(box.width - 1, 1)) {
+        if (!boxInside && rim.rho2(x, y) >= rho2Max) continue;
+        borderSum += row[x];
+        ++borderCount;
+      }
+    }
+    const double white = borderCount > 0 ? borderSum / borderCount : bright;
+    // Weights white - g: summed as integer moments of g (sum g, sum x g, sum y g over n
+    // pixels), combined with the white level at the end.
+    std::int64_t n = 0, sumX = 0, sumY = 0, sumG = 0, sumXG = 0, sumYG = 0;
+    for (int y = box.y; y < box.y + box.height; ++y) {
+      const std::uint8_t* row = grey.ptr<std::uint8_t>(y);
+      std::int64_t rowN = 0, rowX = 0, rowG = 0, rowXG = 0;
+      if (boxInside) {
+        std::int64_t rowIG = 0;
+        rowMoments(row + box.x, box.width, rowG, rowIG);
+        rowN = box.width;
+        const std::int64_t width = box.width;
+        rowX = width * box.x + width * (width - 1) / 2;
+        rowXG = box.x * rowG + rowIG;
+      } else {
+        for (int x = box.x; x < box.x + box.width; ++x) {
+          if (rim.rho2(x, y) >= rho2Max) continue;
+          ++rowN;
+          rowX += x;
+          rowG += row[x];
+          rowXG += static_cast<std::int64_t>(x) * row[x];
+        }
+      }
+      n += rowN;
+      sumX += rowX;
+      sumY += rowN * y;
+      sumG += rowG;
+      sumXG += rowXG;
+      sumYG += static_cast<std::int64_t>(rowG) * y;
+    }
+    const double sw = white * static_cast<double>(n) - static_cast<double>(sumG);
+    const double sx = white * static_cast<double>(sumX) - static_cast<double>(sumXG);
+    const double sy = white * static_cast<double>(sumY) - static_cast<double>(sumYG);
+    if (!(sw > 0.0)) return Status::SpotsNotFound;
+    centroid[k] = Eigen::Vector2d(sx / sw, sy / sw);
+  }
+  const bool firstIsCentre =
+      rim.rho2(centroid[0].x(), centroid[0].y()) <= rim.rho2(centroid[1].x(), centroid[1].y());
+  spots.centre_spot = centroid[firstIsCentre ? 0 : 1];
+  spots.offset_spot = centroid[firstIsCentre ? 1 : 0];
+  return Status::Ok;
+}
+
+}  // namespace imagepro
