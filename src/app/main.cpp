@@ -9,10 +9,10 @@
 
 #include <cstdio>
 
-#include "app/camera_arguments.h"
-#include "app/main_window.h"
-#include "app/responsiveness_probe.h"
-#include "app/source_kind.h"
+#include "app/worker/camera_arguments.h"
+#include "app/main_window/main_window.h"
+#include "app/main_window/responsiveness_probe.h"
+#include "app/worker/source_kind.h"
 
 int main(int argc, char** argv) {
   QApplication app(argc, argv);

@@ -4,8 +4,8 @@
 
 #include <memory>
 
-#include "app/analysis_window.h"
-#include "app/main_window.h"
+#include "app/analysis/analysis_window.h"
+#include "app/main_window/main_window.h"
 
 namespace imagepro::app::test {
 

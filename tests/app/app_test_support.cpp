@@ -5,8 +5,8 @@
 #include <QElapsedTimer>
 #include <QTest>
 
-#include "app/frame_view.h"
-#include "app/worker.h"
+#include "app/main_window/frame_view.h"
+#include "app/worker/worker.h"
 
 #include <QThread>
 

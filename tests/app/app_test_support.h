@@ -9,7 +9,7 @@
 
 #include <functional>
 
-#include "app/main_window.h"
+#include "app/main_window/main_window.h"
 #include "core/settings/enum_names.h"
 
 namespace imagepro::app::test {

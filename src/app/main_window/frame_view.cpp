@@ -1,0 +1,220 @@
+#include "app/main_window/frame_view.h"
+
+#include <QMouseEvent>
+#include <QPainter>
+#include <QFontMetrics>
+#include <QWheelEvent>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace imagepro::app {
+
+namespace {
+
+constexpr double kMinZoom = 0.05;
+constexpr double kMaxZoom = 64.0;
+const QColor kSearchRegion(40, 220, 60);    // thesis: green estimated region
+const QColor kDetectedRegion(60, 120, 255); // thesis: blue detected region
+const QColor kEllipse(255, 60, 60);
+const QColor kContour(255, 0, 255);
+const QColor kSpots(255, 200, 0);
+
+QRectF toRectF(const cv::Rect& r) { return QRectF(r.x, r.y, r.width, r.height); }
+
+}  // namespace
+
+FrameView::FrameView(QWidget* parent) : QWidget(parent) {
+  setMinimumSize(200, 150);
+  setFocusPolicy(Qt::StrongFocus);  // the appendix A keys reach the window while the view has focus
+  setAttribute(Qt::WA_OpaquePaintEvent);
+  setMouseTracking(false);
+  setToolTip(tr("Wheel: zoom, drag: pan, double-click: fit the frame"));
+}
+
+void FrameView::setPacket(DisplayPacketPtr packet) {
+  const QSize old = imageSize();
+  packet_ = std::move(packet);
+  if (fit_ || old != imageSize()) fitToWindow();
+  update();
+}
+
+QSize FrameView::imageSize() const {
+  if (!packet_) return {};
+  const cv::Size s = packet_->result.image_size;
+  return {s.width, s.height};
+}
+
+void FrameView::fitToWindow() {
+  fit_ = true;
+  const QSize s = imageSize();
+  if (s.isEmpty()) return;
+  zoom_ = std::clamp(std::min(width() / double(s.width()), height() / double(s.height())), kMinZoom, kMaxZoom);
+  offset_ = QPointF((width() - zoom_ * s.width()) / 2.0, (height() - zoom_ * s.height()) / 2.0);
+  update();
+}
+
+void FrameView::zoomBy(double factor, QPointF anchor) {
+  const double z = std::clamp(zoom_ * factor, kMinZoom, kMaxZoom);
+  // Keep the image point under `anchor` where it is.
+  offset_ = anchor - (anchor - offset_) * (z / zoom_);
+  zoom_ = z;
+  fit_ = false;
+  update();
+}
+
+void FrameView::zoomIn() { zoomBy(1.25, rect().center()); }
+void FrameView::zoomOut() { zoomBy(0.8, rect().center()); }
+
+QPointF FrameView::toScreen(QPointF p) const { return offset_ + zoom_ * p; }
+
+void FrameView::paintEvent(QPaintEvent*) {
+  QPainter painter(this);
+  painter.fillRect(rect(), QColor(32, 34, 38));
+  if (!packet_) {
+    painter.setPen(QColor(180, 180, 180));
+    painter.drawText(rect(), Qt::AlignCenter, tr("No frame yet: choose a source and press Start, or open a file"));
+    return;
+  }
+  const DisplayPacket& p = *packet_;
+  painter.save();
+  painter.translate(offset_);
+  painter.scale(zoom_, zoom_);
+  painter.setRenderHint(QPainter::SmoothPixmapTransform, zoom_ < 1.0);
+  const QSize size = imageSize();
+  painter.fillRect(QRect(QPoint(0, 0), size), Qt::black);  // Empty background, and under Binary
+  if (!p.background.isNull()) painter.drawImage(QPoint(0, 0), p.background);
+  if (!p.binary.isNull()) painter.drawImage(p.binary_origin, p.binary);
+  if (!p.target.isNull()) painter.drawImage(p.target_origin, p.target);
+  if (!p.edge_overlay.isNull()) painter.drawImage(QPoint(0, 0), p.edge_overlay);
+  paintOverlays(painter);
+  painter.restore();
+  paintNumbers(painter);
+  if (last_painted_ != packet_.get()) {
+    last_painted_ = packet_.get();
+    emit painted();
+  }
+}
+
+void FrameView::paintOverlays(QPainter& painter) const {
+  const DisplayPacket& p = *packet_;
+  const FrameResult& r = p.result;
+  painter.setRenderHint(QPainter::Antialiasing, true);
+  QPen pen;
+  pen.setCosmetic(true);
+  pen.setWidthF(2.0);
+  painter.setBrush(Qt::NoBrush);
+  // Regions are in whole pixels: their rectangles cover the pixels' full squares.
+  if (!r.search_region.empty()) {
+    pen.setColor(kSearchRegion);
+    painter.setPen(pen);
+    painter.drawRect(toRectF(r.search_region));
+  }
+  if (!r.detected_region.empty()) {
+    pen.setColor(kDetectedRegion);
+    painter.setPen(pen);
+    painter.drawRect(toRectF(r.detected_region));
+  }
+  // Point features: pixel (u, v)'s centre sits at (u + 0.5, v + 0.5) in the painter.
+  painter.translate(0.5, 0.5);
+  if (p.display.target == DisplayOptions::Target::Path) {
+    pen.setColor(kEllipse);
+    painter.setPen(pen);
+    for (const TargetSummary& t : r.targets) {
+      painter.save();
+      painter.translate(t.ellipse.cx, t.ellipse.cy);
+      painter.rotate(t.ellipse.angle_deg);
+      painter.drawEllipse(QPointF(0, 0), t.ellipse.a, t.ellipse.b);
+      painter.restore();
+    }
+  }
+  if (p.display.feature_edge && !r.contour_points.empty()) {
+    // Square cosmetic points without antialiasing: hundreds of them cost next to nothing.
+    painter.setRenderHint(QPainter::Antialiasing, false);
+    QPen dots(kContour);
+    dots.setCosmetic(true);
+    dots.setWidthF(3.0);
+    painter.setPen(dots);
+    QPolygonF points;
+    points.reserve(static_cast<qsizetype>(r.contour_points.size()));
+    for (const cv::Point2f& c : r.contour_points) points.append(QPointF(c.x, c.y));
+    painter.drawPoints(points);
+    painter.setRenderHint(QPainter::Antialiasing, true);
+  }
+  if (p.display.feature_spots && r.reached >= ApplicationLevel::Reconstruction && r.pose) {
+    pen.setColor(kSpots);
+    painter.setPen(pen);
+    const double arm = 6.0 / zoom_;
+    for (const cv::Point2f& s : r.spots) {
+      painter.drawLine(QPointF(s.x - arm, s.y), QPointF(s.x + arm, s.y));
+      painter.drawLine(QPointF(s.x, s.y - arm), QPointF(s.x, s.y + arm));
+    }
+  }
+}
+
+void FrameView::paintNumbers(QPainter& painter) const {
+  // Drawn in screen space so they stay readable at every zoom.
+  const DisplayPacket& p = *packet_;
+  QFont font = painter.font();
+  font.setPointSizeF(std::max(8.0, font.pointSizeF()));
+  font.setBold(true);
+  painter.setFont(font);
+  for (const TargetSummary& t : p.result.targets) {
+    const QString text = p.ellipse_method == EllipseMethod::Bennett
+                             ? tr("S %1  Q %2  Y %3")
+                                   .arg(t.bennett_score, 0, 'f', 0)
+                                   .arg(t.bennett_quality, 0, 'f', 0)
+                                   .arg(t.bennett_symmetry, 0, 'f', 2)
+                             : tr("E %1").arg(t.fit_error, 0, 'g', 3);
+    const QPointF c = toScreen(QPointF(t.ellipse.cx + 0.5, t.ellipse.cy + 0.5));
+    const QFontMetrics metrics(font);
+    QRectF box = metrics.boundingRect(text);
+    box.adjust(-4, -1, 4, 1);
+    box.moveCenter(c + QPointF(0, metrics.height()));  // just below the centre spot
+    painter.setPen(Qt::NoPen);
+    painter.setBrush(QColor(0, 0, 0, 150));
+    painter.drawRoundedRect(box, 3, 3);
+    painter.setPen(QColor(255, 255, 120));
+    painter.drawText(box, Qt::AlignCenter, text);
+  }
+}
+
+void FrameView::wheelEvent(QWheelEvent* event) {
+  const double steps = event->angleDelta().y() / 120.0;
+  if (steps != 0.0) zoomBy(std::pow(1.25, steps), event->position());
+  event->accept();
+}
+
+void FrameView::mousePressEvent(QMouseEvent* event) {
+  if (event->button() == Qt::LeftButton) {
+    dragging_ = true;
+    drag_start_ = event->position();
+    drag_offset_ = offset_;
+    setCursor(Qt::ClosedHandCursor);
+  }
+  QWidget::mousePressEvent(event);
+}
+
+void FrameView::mouseMoveEvent(QMouseEvent* event) {
+  if (dragging_) {
+    offset_ = drag_offset_ + (event->position() - drag_start_);
+    fit_ = false;
+    update();
+  }
+}
+
+void FrameView::mouseReleaseEvent(QMouseEvent* event) {
+  if (event->button() == Qt::LeftButton && dragging_) {
+    dragging_ = false;
+    unsetCursor();
+  }
+}
+
+void FrameView::mouseDoubleClickEvent(QMouseEvent*) { fitToWindow(); }
+
+void FrameView::resizeEvent(QResizeEvent*) {
+  if (fit_) fitToWindow();
+}
+
+}  // namespace imagepro::app

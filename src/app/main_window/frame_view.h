@@ -1,0 +1,60 @@
+#pragma once
+// The image part of the results area (thesis appendix A.1.2): the background the
+// display options chose, edge pixels or coloured connected paths, the green
+// estimated region, the blue detected region, the fitted ellipse, the contour
+// features and spots, and the fit numbers at the ellipse centre. Zoom with the
+// wheel, pan by dragging, double-click to fit the frame to the view.
+#include <QImage>
+#include <QPointF>
+#include <QWidget>
+
+#include "app/worker/display_packet.h"
+
+namespace imagepro::app {
+
+class FrameView : public QWidget {
+  Q_OBJECT
+
+ public:
+  explicit FrameView(QWidget* parent = nullptr);
+
+  void setPacket(DisplayPacketPtr packet);
+  const DisplayPacketPtr& packet() const { return packet_; }
+
+  double zoom() const { return zoom_; }  // screen pixels per image pixel
+  void zoomBy(double factor, QPointF anchor);
+  void zoomIn();
+  void zoomOut();
+  void fitToWindow();
+
+  QSize sizeHint() const override { return {660, 500}; }
+
+ signals:
+  void painted();  // a new packet has been drawn (the worker may send the next one)
+
+ protected:
+  void paintEvent(QPaintEvent* event) override;
+  void wheelEvent(QWheelEvent* event) override;
+  void mousePressEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
+  void mouseReleaseEvent(QMouseEvent* event) override;
+  void mouseDoubleClickEvent(QMouseEvent* event) override;
+  void resizeEvent(QResizeEvent* event) override;
+
+ private:
+  void paintOverlays(QPainter& painter) const;
+  void paintNumbers(QPainter& painter) const;
+  QPointF toScreen(QPointF image_point) const;
+  QSize imageSize() const;
+
+  DisplayPacketPtr packet_;
+  const DisplayPacket* last_painted_ = nullptr;  // repaints of the same packet do not count
+  bool fit_ = true;       // keep the frame fitted to the view until the user zooms or pans
+  double zoom_ = 1.0;
+  QPointF offset_;        // screen position of image point (0, 0)'s top-left corner
+  QPointF drag_start_;
+  QPointF drag_offset_;
+  bool dragging_ = false;
+};
+
+}  // namespace imagepro::app

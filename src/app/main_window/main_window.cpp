@@ -1,0 +1,305 @@
+#include "app/main_window/main_window.h"
+
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDockWidget>
+#include <QFileInfo>
+#include <QFontDatabase>
+#include <QFontMetrics>
+#include <QIcon>
+#include <QImageReader>
+#include <QLabel>
+#include <QScrollArea>
+#include <QSettings>
+#include <QSplitter>
+#include <QStatusBar>
+#include <QTabWidget>
+#include <QTimer>
+#include <QVBoxLayout>
+
+#include "app/panels/calibration_panel.h"
+#include "app/calibration_wizard/calibration_wizard.h"
+#include "app/panels/control_panel.h"
+#include "app/main_window/frame_view.h"
+#include "app/plots/histogram_chart.h"
+#include "app/main_window/message_banner.h"
+#include "app/panels/output_panel.h"
+#include "app/plots/pose_plots.h"
+#include "app/main_window/recent_files.h"
+#include "app/main_window/results_text.h"
+#include "app/settings/settings_binder.h"
+#include "app/panels/source_panel.h"
+#include "app/plots/stage_time_chart.h"
+#include "app/worker/worker.h"
+
+// The resources live in the imagepro_app static library: make sure they are linked in.
+static void initImageProResources() { Q_INIT_RESOURCE(imagepro); }
+
+namespace imagepro::app {
+
+namespace {
+
+
+QIcon applicationIcon() {
+  // The SVG is the drawing; the PNG rendering of it serves where Qt has no SVG plugin.
+  if (QImageReader::supportedImageFormats().contains("svg")) return QIcon(QStringLiteral(":/icons/imagepro.svg"));
+  return QIcon(QStringLiteral(":/icons/imagepro.png"));
+}
+
+}  // namespace
+
+MainWindow::MainWindow(QWidget* parent)
+    : QMainWindow(parent), binder_(new SettingsBinder(settings_, this)), worker_(new Worker(settings_)) {
+  initImageProResources();
+  setObjectName(QStringLiteral("mainWindow"));
+  setWindowTitle(tr("ImagePro"));
+  setWindowIcon(applicationIcon());
+  setAcceptDrops(true);
+  setDockOptions(QMainWindow::AnimatedDocks | QMainWindow::AllowTabbedDocks);
+
+  buildResultsArea();
+  buildDocks();
+  buildStatusBar();
+  buildMenus();
+  connectWorker();
+
+  readout_timer_ = new QTimer(this);
+  connect(readout_timer_, &QTimer::timeout, this, &MainWindow::refreshReadouts);
+  readout_timer_->start(kReadoutMs);
+
+  connect(binder_, &SettingsBinder::changed, this, &MainWindow::onSettingsEdited);
+  qApp->installEventFilter(this);
+  worker_->moveToThread(&thread_);
+  connect(&thread_, &QThread::finished, worker_, &QObject::deleteLater);
+  thread_.setObjectName(QStringLiteral("imagepro-worker"));
+  thread_.start();
+  restoreLayout();
+}
+
+MainWindow::~MainWindow() {
+  qApp->removeEventFilter(this);
+  worker_->stop();
+  thread_.quit();
+  thread_.wait();
+}
+
+void MainWindow::buildResultsArea() {
+  view_ = new FrameView;
+  view_->setObjectName(QStringLiteral("frameView"));
+  results_text_ = new QLabel;
+  results_text_->setObjectName(QStringLiteral("resultsText"));
+  results_text_->setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
+  results_text_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  results_text_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
+  results_text_->setMargin(6);
+  results_text_->setText(tr("No results yet."));
+  auto* text_scroll = new QScrollArea;
+  text_scroll->setWidget(results_text_);
+  text_scroll->setWidgetResizable(true);
+  // Wide enough for the longest line of the results text (the pose lines).
+  text_scroll->setMinimumWidth(QFontMetrics(results_text_->font()).horizontalAdvance(QString(44, QLatin1Char('0'))) + 30);
+
+  results_area_ = new QWidget;
+  results_area_->setObjectName(QStringLiteral("resultsArea"));
+  // The two parts of the thesis's results area side by side: the frame, then the numbers.
+  auto* splitter = new QSplitter(Qt::Horizontal);
+  splitter->setObjectName(QStringLiteral("resultsSplitter"));
+  splitter->addWidget(view_);
+  splitter->addWidget(text_scroll);
+  splitter->setStretchFactor(0, 3);
+  splitter->setStretchFactor(1, 1);
+  splitter->setSizes({900, 380});
+  auto* results_layout = new QVBoxLayout(results_area_);
+  results_layout->setContentsMargins(0, 0, 0, 0);
+  results_layout->addWidget(splitter);
+
+  banner_ = new MessageBanner;
+  auto* central = new QWidget;
+  auto* layout = new QVBoxLayout(central);
+  layout->setContentsMargins(2, 2, 2, 2);
+  layout->setSpacing(2);
+  layout->addWidget(banner_);
+  layout->addWidget(results_area_, 1);
+  setCentralWidget(central);
+  connect(view_, &FrameView::painted, this, [this] { worker_->markDisplayed(); });
+}
+
+void MainWindow::buildDocks() {
+  control_panel_ = new ControlPanel(*binder_);
+  auto* controls = new QDockWidget(tr("Control Panel"), this);
+  controls->setObjectName(QStringLiteral("controlDock"));
+  controls->setWidget(control_panel_);
+  controls->setMinimumWidth(280);
+  addDockWidget(Qt::LeftDockWidgetArea, controls);
+
+  plots_ = new PosePlots;
+  plots_->setObjectName(QStringLiteral("posePlots"));
+  histogram_ = new HistogramChart;
+  histogram_->setObjectName(QStringLiteral("histogramChart"));
+  stage_times_ = new StageTimeChart;
+  stage_times_->setObjectName(QStringLiteral("stageTimeChart"));
+  auto* tabs = new QTabWidget;
+  tabs->setObjectName(QStringLiteral("plotTabs"));
+  tabs->addTab(plots_, tr("Parameters"));
+  tabs->addTab(histogram_, tr("Histogram"));
+  tabs->addTab(stage_times_, tr("Stage times"));
+  auto* plots = new QDockWidget(tr("Plots"), this);
+  plots->setObjectName(QStringLiteral("plotDock"));
+  plots->setWidget(tabs);
+  addDockWidget(Qt::BottomDockWidgetArea, plots);
+  connect(plots_, &PosePlots::message, this, &MainWindow::showInfo);
+  connect(plots_, &PosePlots::error, this, &MainWindow::showError);
+  connect(tabs, &QTabWidget::currentChanged, this, [this] {
+    readouts_dirty_ = true;
+    refreshReadouts();
+  });
+
+  SourcePanel* source = control_panel_->sourcePanel();
+  connect(source, &SourcePanel::openFileRequested, this, [this] { openDialog(false); });
+  connect(source, &SourcePanel::startRequested, this, [this] { startSource(); });
+  connect(source, &SourcePanel::stopRequested, this, &MainWindow::stopSource);
+  OutputPanel* output = control_panel_->outputPanel();
+  connect(output, &OutputPanel::dataOutToggled, this, &MainWindow::dataOutDialog);
+  connect(output, &OutputPanel::screenshotRequested, this, &MainWindow::screenshotDialog);
+  connect(output, &OutputPanel::settingsDialogRequested, this, &MainWindow::settingsDialog);
+  connect(output, &OutputPanel::saveSettingsRequested, this, &MainWindow::saveSettingsDialog);
+  connect(output, &OutputPanel::loadSettingsRequested, this, &MainWindow::loadSettingsDialog);
+  connect(output, &OutputPanel::restoreDefaultsRequested, this, &MainWindow::restoreDefaults);
+  connect(control_panel_->calibrationPanel(), &CalibrationPanel::wizardRequested, this,
+          [this] { showCalibrationWizard(*this); });
+}
+
+void MainWindow::buildStatusBar() {
+  status_source_ = new QLabel(tr("no source"));
+  status_rate_ = new QLabel;
+  status_state_ = new QLabel;
+  status_source_->setObjectName(QStringLiteral("statusSource"));
+  status_rate_->setObjectName(QStringLiteral("statusRate"));
+  status_state_->setObjectName(QStringLiteral("statusState"));
+  // A normal widget, so a message (an error, a warning) takes its place for a while.
+  statusBar()->addWidget(status_state_, 1);
+  statusBar()->addPermanentWidget(status_rate_);
+  statusBar()->addPermanentWidget(status_source_);
+}
+
+void MainWindow::connectWorker() {
+  connect(worker_, &Worker::packetReady, this, &MainWindow::onPacket);
+  connect(worker_, &Worker::runningChanged, this, [this](bool running) {
+    control_panel_->sourcePanel()->setRunning(running);
+    if (!running) status_rate_->setText(tr("stopped"));
+  });
+  connect(worker_, &Worker::sourceChanged, this, [this](const QString& description) {
+    status_source_->setText(description);
+    control_panel_->sourcePanel()->setDescription(description);
+  });
+  connect(worker_, &Worker::errorOccurred, this, &MainWindow::showError);
+  connect(worker_, &Worker::warningOccurred, this,
+          [this](const QString& message) { statusBar()->showMessage(tr("Warning: %1").arg(message), 15000); });
+  connect(worker_, &Worker::dataOutChanged, this, [this](const QString& path) {
+    data_out_path_ = path;
+    control_panel_->outputPanel()->setDataOutPath(path);
+    if (!path.isEmpty()) showInfo(tr("Data Out writing to %1").arg(path));
+  });
+}
+
+void MainWindow::onPacket(const DisplayPacketPtr& packet) {
+  ++packets_shown_;
+  latest_ = packet;
+  readouts_dirty_ = true;
+  view_->setPacket(packet);
+  plots_->append(packet->history);
+  // A hidden view will not paint: let the worker send the next packet anyway.
+  if (!view_->isVisible() || view_->size().isEmpty()) worker_->markDisplayed();
+  // The first frame after a pause is shown at once; while running, text and charts
+  // follow at the readout rate (nobody reads numbers changing faster).
+  if (!readout_clock_.isValid() || readout_clock_.elapsed() >= kReadoutMs) refreshReadouts();
+  emit packetShown();
+}
+
+void MainWindow::refreshReadouts() {
+  if (!readouts_dirty_ || !latest_) return;
+  readouts_dirty_ = false;
+  readout_clock_.start();
+  const DisplayPacket& packet = *latest_;
+  const FrameResult& r = packet.result;
+  results_text_->setText(formatResults(packet));
+  status_rate_->setText(tr("%1 Hz  CPU %2 %").arg(packet.hz, 0, 'f', 1).arg(packet.cpu_percent, 0, 'f', 0));
+  status_state_->setText(statusInWords(r.status));
+  status_state_->setStyleSheet(r.status == Status::Ok || r.status == Status::Stopped ? QString()
+                                                                                     : QStringLiteral("color: #b00020;"));
+  if (!packet.source.isEmpty()) status_source_->setText(packet.source);
+  if (histogram_->isVisible()) histogram_->setHistogram(r.histogram, r.threshold);
+  if (stage_times_->isVisible()) stage_times_->setTimes(r.times);
+}
+
+void MainWindow::onSettingsEdited() { worker_->setSettings(settings_); }
+
+void MainWindow::setSettings(const Settings& settings) {
+  settings_ = settings;
+  binder_->refresh();
+  worker_->setSettings(settings_);
+}
+
+void MainWindow::restoreDefaults() {
+  setSettings(Settings{});
+  showInfo(tr("Every option restored to its default"));
+}
+
+void MainWindow::selectSource(SourceKind kind) { control_panel_->sourcePanel()->setKind(kind); }
+
+void MainWindow::startSource() {
+  const SourceKind kind = control_panel_->sourcePanel()->kind();
+  if (kind == SourceKind::File) {
+    openDialog(false);
+    return;
+  }
+  worker_->start(kind);
+}
+
+void MainWindow::stopSource() { worker_->stop(); }
+
+void MainWindow::openPaths(const QStringList& paths) {
+  if (paths.isEmpty()) return;
+  last_dir_ = QFileInfo(paths.front()).absolutePath();
+  for (const QString& p : paths) recent_->add(p);
+  selectSource(SourceKind::File);
+  worker_->openFiles(paths);
+}
+
+QString MainWindow::resultsText() const { return results_text_->text(); }
+
+QStringList MainWindow::recentPaths() const { return recent_->paths(); }
+
+void MainWindow::showError(const QString& message) {
+  last_error_ = message;
+  banner_->showError(message);
+  statusBar()->showMessage(message, 15000);
+}
+
+void MainWindow::showInfo(const QString& message) { statusBar()->showMessage(message, 5000); }
+
+void MainWindow::restoreLayout() {
+  QSettings store;
+  if (!restoreGeometry(store.value(QStringLiteral("window/geometry")).toByteArray())) resize(1280, 860);
+  if (!restoreState(store.value(QStringLiteral("window/state")).toByteArray())) {
+    // First run: the frame gets most of the room (once the window has its size).
+    QTimer::singleShot(0, this, [this] {
+      resizeDocks({findChild<QDockWidget*>(QStringLiteral("controlDock"))}, {300}, Qt::Horizontal);
+      resizeDocks({findChild<QDockWidget*>(QStringLiteral("plotDock"))}, {250}, Qt::Vertical);
+    });
+  }
+  control_panel_->restoreState(store);
+  last_dir_ = store.value(QStringLiteral("lastDirectory")).toString();
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  QSettings store;
+  store.setValue(QStringLiteral("window/geometry"), saveGeometry());
+  store.setValue(QStringLiteral("window/state"), saveState());
+  store.setValue(QStringLiteral("lastDirectory"), last_dir_);
+  control_panel_->saveState(store);
+  worker_->stop();
+  QMainWindow::closeEvent(event);
+}
+
+}  // namespace imagepro::app

@@ -1,0 +1,121 @@
+#pragma once
+// The ImagePro window (thesis appendix A): the control panel dock, the results area
+// (frame view and results text), the plots dock and the status bar. It holds the
+// one Settings model the panels edit and hands copies to the worker thread; it
+// draws what the worker sends and holds no algorithm itself.
+#include <QElapsedTimer>
+#include <QMainWindow>
+#include <QThread>
+
+#include "app/worker/display_packet.h"
+#include "app/worker/source_kind.h"
+#include "core/pipeline/data_out.h"
+#include "core/settings/settings.h"
+
+class QLabel;
+class QTimer;
+
+namespace imagepro::app {
+
+class ControlPanel;
+class FrameView;
+class HistogramChart;
+class MessageBanner;
+class PosePlots;
+class RecentFiles;
+class SettingsBinder;
+class StageTimeChart;
+class Worker;
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+
+ public:
+  explicit MainWindow(QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  // Actions, also used by the command line and the tests.
+  bool loadSettingsFile(const QString& path);   // false: the error (naming the key) is shown
+  bool saveSettingsFile(const QString& path);
+  void restoreDefaults();
+  void setSettings(const Settings& settings);   // replaces the model, refreshes the panels
+  const Settings& settings() const { return settings_; }
+  void selectSource(SourceKind kind);
+  void startSource();                            // the selected live source
+  void stopSource();
+  void openPaths(const QStringList& paths);      // files or folders: switches to File input
+  bool saveScreenshot(const QString& path);
+  void startDataOut(const QString& path, ExistingFile existing, bool replace);
+  void stopDataOut();
+
+  Worker* worker() const { return worker_; }
+  ControlPanel* controlPanel() const { return control_panel_; }
+  FrameView* frameView() const { return view_; }
+  PosePlots* posePlots() const { return plots_; }
+  HistogramChart* histogramChart() const { return histogram_; }
+  StageTimeChart* stageTimeChart() const { return stage_times_; }
+  QWidget* resultsArea() const { return results_area_; }
+  QString resultsText() const;
+  QString lastError() const { return last_error_; }
+  QString dataOutPath() const { return data_out_path_; }
+  QStringList recentPaths() const;
+  std::int64_t packetsShown() const { return packets_shown_; }
+
+ signals:
+  void packetShown();
+
+ protected:
+  void closeEvent(QCloseEvent* event) override;
+  void dragEnterEvent(QDragEnterEvent* event) override;
+  void dropEvent(QDropEvent* event) override;
+  bool eventFilter(QObject* watched, QEvent* event) override;
+
+ private:
+  void buildResultsArea();
+  void buildDocks();
+  void buildMenus();
+  void buildStatusBar();
+  void connectWorker();
+  void restoreLayout();
+  void onPacket(const DisplayPacketPtr& packet);
+  void refreshReadouts();  // results text, status bar, histogram and stage times
+  void onSettingsEdited();
+  void showError(const QString& message);
+  void showInfo(const QString& message);
+  // Interactive versions with dialogs.
+  void openDialog(bool folder);
+  void saveSettingsDialog();
+  void loadSettingsDialog();
+  void screenshotDialog();
+  void dataOutDialog(bool on);
+  void settingsDialog();
+  void showKeys();
+
+  Settings settings_;
+  SettingsBinder* binder_;
+  QThread thread_;
+  Worker* worker_;
+  ControlPanel* control_panel_ = nullptr;
+  FrameView* view_ = nullptr;
+  QLabel* results_text_ = nullptr;
+  QWidget* results_area_ = nullptr;
+  MessageBanner* banner_ = nullptr;
+  PosePlots* plots_ = nullptr;
+  HistogramChart* histogram_ = nullptr;
+  StageTimeChart* stage_times_ = nullptr;
+  RecentFiles* recent_ = nullptr;
+  QLabel* status_source_ = nullptr;
+  QLabel* status_rate_ = nullptr;
+  QLabel* status_state_ = nullptr;
+  static constexpr int kReadoutMs = 100;
+  QTimer* readout_timer_ = nullptr;
+  QElapsedTimer readout_clock_;
+  DisplayPacketPtr latest_;
+  bool readouts_dirty_ = false;
+  QString last_error_;
+  QString data_out_path_;
+  QString last_dir_;
+  std::int64_t packets_shown_ = 0;
+};
+
+}  // namespace imagepro::app

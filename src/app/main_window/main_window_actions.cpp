@@ -1,0 +1,223 @@
+// MainWindow: menus, file dialogs, settings files, Data Out and Screenshot.
+#include <QAction>
+#include <QApplication>
+#include <QDateTime>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QKeySequence>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QPixmap>
+#include <QPushButton>
+
+#include "app/analysis/analysis_window.h"
+#include "app/calibration_wizard/calibration_wizard.h"
+#include "app/panels/control_panel.h"
+#include "app/main_window/frame_view.h"
+#include "app/main_window/main_window.h"
+#include "app/panels/output_panel.h"
+#include "app/main_window/recent_files.h"
+#include "app/settings/settings_binder.h"
+#include "app/settings/settings_dialog.h"
+#include "app/panels/source_panel.h"
+#include "app/worker/worker.h"
+
+namespace imagepro::app {
+
+namespace {
+const QString kImageFilter = QObject::tr(
+    "Images and videos (*.png *.pgm *.ppm *.pnm *.bmp *.jpg *.jpeg *.tif *.tiff *.avi *.mp4 *.mkv *.mov);;All files (*)");
+const QString kSettingsFilter = QObject::tr("Settings (*.json);;All files (*)");
+}  // namespace
+
+void MainWindow::buildMenus() {
+  QMenu* file = menuBar()->addMenu(tr("&File"));
+  QAction* open = file->addAction(tr("&Open Images..."), this, [this] { openDialog(false); });
+  open->setShortcut(QKeySequence::Open);
+  file->addAction(tr("Open &Folder..."), this, [this] { openDialog(true); })->setShortcut(QKeySequence(tr("Ctrl+Shift+O")));
+  QMenu* recent_menu = file->addMenu(tr("&Recent"));
+  recent_ = new RecentFiles(recent_menu, this);
+  connect(recent_, &RecentFiles::chosen, this, [this](const QString& path) { openPaths({path}); });
+  file->addSeparator();
+  file->addAction(tr("&Save Settings..."), this, &MainWindow::saveSettingsDialog)->setShortcut(QKeySequence::Save);
+  file->addAction(tr("&Load Settings..."), this, &MainWindow::loadSettingsDialog)->setShortcut(QKeySequence(tr("Ctrl+L")));
+  file->addAction(tr("Restore &Defaults"), this, &MainWindow::restoreDefaults);
+  file->addAction(tr("Se&ttings..."), this, &MainWindow::settingsDialog)->setShortcut(QKeySequence(tr("Ctrl+,")));
+  file->addSeparator();
+  file->addAction(tr("Screens&hot..."), this, &MainWindow::screenshotDialog)->setShortcut(QKeySequence(tr("Ctrl+Shift+S")));
+  file->addAction(tr("Data &Out..."), this, [this] { dataOutDialog(true); })->setShortcut(QKeySequence(tr("Ctrl+D")));
+  file->addSeparator();
+  file->addAction(tr("&Quit"), this, &QWidget::close)->setShortcut(QKeySequence::Quit);
+
+  QMenu* run = menuBar()->addMenu(tr("&Run"));
+  QAction* start_stop = run->addAction(tr("&Start / Stop"), this, [this] {
+    if (worker_->isRunning()) stopSource();
+    else startSource();
+  });
+  start_stop->setShortcut(QKeySequence(Qt::Key_F5));
+  for (SourceKind k : kSourceKinds) {
+    QAction* a = run->addAction(tr("Source: %1").arg(sourceKindLabel(k)), this, [this, k] { selectSource(k); });
+    a->setShortcut(QKeySequence(QStringLiteral("Alt+%1").arg(static_cast<int>(k) + 1)));
+  }
+  run->addSeparator();
+  run->addAction(tr("&Analysis..."), this, [this] {
+    auto* analysis = findChild<AnalysisWindow*>();
+    if (!analysis) analysis = new AnalysisWindow(*this, this);
+    analysis->show();
+    analysis->raise();
+    analysis->activateWindow();
+  })->setShortcut(QKeySequence(tr("Ctrl+Shift+A")));
+
+  QMenu* view = menuBar()->addMenu(tr("&View"));
+  view->addAction(tr("Zoom &In"), this, [this] { view_->zoomIn(); })->setShortcut(QKeySequence::ZoomIn);
+  view->addAction(tr("Zoom &Out"), this, [this] { view_->zoomOut(); })->setShortcut(QKeySequence::ZoomOut);
+  view->addAction(tr("&Fit Frame"), this, [this] { view_->fitToWindow(); })->setShortcut(QKeySequence(tr("Ctrl+0")));
+  view->addSeparator();
+  for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
+
+  QMenu* tools = menuBar()->addMenu(tr("&Tools"));
+  tools->setToolTipsVisible(true);
+  tools->addAction(tr("&Calibration Wizard..."), this, [this] { showCalibrationWizard(*this); })
+      ->setToolTip(tr("Lens distortion calibration from up to four images of the calibration pattern (thesis 4.6)"));
+
+  QMenu* help = menuBar()->addMenu(tr("&Help"));
+  help->addAction(tr("&Keys"), this, &MainWindow::showKeys)->setShortcut(QKeySequence::HelpContents);
+  help->addAction(tr("&About ImagePro"), this, [this] {
+    QMessageBox::about(this, tr("About ImagePro"),
+                       tr("<b>ImagePro %1</b><p>Real-time monocular 3D reconstruction of a secondary passive target: "
+                          "a white disk with two black spots, found and reconstructed in every frame.</p>")
+                           .arg(QApplication::applicationVersion()));
+  });
+}
+
+void MainWindow::showKeys() {
+  QMessageBox::information(this, tr("Keys"),
+                           tr("<p>With the Virtual source, these keys move the target (thesis appendix A):</p>"
+                              "<table><tr><td>4 / 6</td><td>Tx - / +</td></tr><tr><td>2 / 8</td><td>Ty - / +</td></tr>"
+                              "<tr><td>Insert / Delete</td><td>Tz - / +</td></tr><tr><td>Up / Down</td><td>Rx - / +</td></tr>"
+                              "<tr><td>Left / Right</td><td>Ry - / +</td></tr><tr><td>Home / End</td><td>Rz - / +</td></tr></table>"
+                              "<p>F5 start / stop, Ctrl+O open, Ctrl+S / Ctrl+L save / load settings, Ctrl+Shift+S screenshot, "
+                              "Ctrl+D data out, Ctrl+0 fit, Ctrl++ / Ctrl+- zoom. The keys do not reach the target while "
+                              "a number or list field has the focus: click the frame first.</p>"));
+}
+
+void MainWindow::openDialog(bool folder) {
+  QStringList paths;
+  if (folder) {
+    const QString dir = QFileDialog::getExistingDirectory(this, tr("Open an image folder"), last_dir_);
+    if (!dir.isEmpty()) paths << dir;
+  } else {
+    paths = QFileDialog::getOpenFileNames(this, tr("Open images"), last_dir_, kImageFilter);
+  }
+  openPaths(paths);
+}
+
+bool MainWindow::loadSettingsFile(const QString& path) {
+  Settings loaded = settings_;
+  std::string error;
+  if (!ok(loadSettings(path.toStdString(), loaded, error))) {
+    showError(tr("Settings not loaded from %1: %2").arg(QFileInfo(path).fileName(), QString::fromStdString(error)));
+    return false;
+  }
+  setSettings(loaded);
+  showInfo(tr("Settings loaded from %1").arg(path));
+  return true;
+}
+
+bool MainWindow::saveSettingsFile(const QString& path) {
+  std::string error;
+  if (!ok(saveSettings(path.toStdString(), settings_, error))) {
+    showError(tr("Settings not saved: %1").arg(QString::fromStdString(error)));
+    return false;
+  }
+  showInfo(tr("Settings saved to %1").arg(path));
+  return true;
+}
+
+void MainWindow::saveSettingsDialog() {
+  const QString path = QFileDialog::getSaveFileName(this, tr("Save settings"), last_dir_ + QStringLiteral("/settings.json"),
+                                                    kSettingsFilter);
+  if (!path.isEmpty()) saveSettingsFile(path);
+}
+
+void MainWindow::loadSettingsDialog() {
+  const QString path = QFileDialog::getOpenFileName(this, tr("Load settings"), last_dir_, kSettingsFilter);
+  if (!path.isEmpty()) loadSettingsFile(path);
+}
+
+void MainWindow::settingsDialog() {
+  // Camera controls go through the worker, which sets them on the streaming camera.
+  CameraDevices devices = CameraDevices::system();
+  devices.set = [worker = worker_](const std::string& device, const std::string& key, std::int64_t value) {
+    worker->setCameraControl(QString::fromStdString(device), QString::fromStdString(key), value);
+    return std::string();  // a refusal arrives as the worker's error
+  };
+  auto* dialog = new SettingsDialog(settings_, this, std::move(devices));
+  dialog->setAttribute(Qt::WA_DeleteOnClose);
+  connect(dialog, &SettingsDialog::applied, this, [this, dialog] {
+    Settings next = settings_;
+    dialog->applyTo(next);
+    setSettings(next);
+  });
+  dialog->open();
+}
+
+bool MainWindow::saveScreenshot(const QString& path) {
+  const QPixmap shot = results_area_->grab();
+  if (shot.isNull() || !shot.save(path, "PNG")) {
+    showError(tr("Screenshot not saved: %1 cannot be written").arg(path));
+    return false;
+  }
+  showInfo(tr("Screenshot saved to %1").arg(path));
+  return true;
+}
+
+void MainWindow::screenshotDialog() {
+  // Taken now, so the picture is the frame on screen when the button was pressed.
+  const QPixmap shot = results_area_->grab();
+  const QString name = QStringLiteral("imagepro-%1.png").arg(QDateTime::currentDateTime().toString(QStringLiteral("yyyyMMdd-hhmmss")));
+  const QString path = QFileDialog::getSaveFileName(this, tr("Save screenshot"), last_dir_ + QLatin1Char('/') + name,
+                                                    tr("PNG images (*.png)"));
+  if (path.isEmpty()) return;
+  if (!shot.save(path, "PNG")) showError(tr("Screenshot not saved: %1 cannot be written").arg(path));
+  else showInfo(tr("Screenshot saved to %1").arg(path));
+}
+
+void MainWindow::startDataOut(const QString& path, ExistingFile existing, bool replace) {
+  worker_->setDataOut(path, existing, replace);
+}
+
+void MainWindow::stopDataOut() { worker_->closeDataOut(); }
+
+void MainWindow::dataOutDialog(bool on) {
+  if (!on) {
+    stopDataOut();
+    return;
+  }
+  // Unticked until the worker confirms the file is open.
+  control_panel_->outputPanel()->setDataOutPath(data_out_path_);
+  const QString path = QFileDialog::getSaveFileName(this, tr("Data Out: write the parameters to"),
+                                                    last_dir_ + QStringLiteral("/dataout.csv"),
+                                                    tr("CSV files (*.csv *.txt);;All files (*)"), nullptr,
+                                                    QFileDialog::DontConfirmOverwrite);
+  if (path.isEmpty()) return;
+  if (!QFileInfo::exists(path)) {
+    startDataOut(path, ExistingFile::Fail, false);
+    return;
+  }
+  QMessageBox ask(QMessageBox::Question, tr("Data Out"),
+                  tr("%1 already exists. Add the new rows to its end, write to a new numbered file beside it, or "
+                     "replace it?").arg(QFileInfo(path).fileName()),
+                  QMessageBox::Cancel, this);
+  QPushButton* append = ask.addButton(tr("Append"), QMessageBox::AcceptRole);
+  QPushButton* numbered = ask.addButton(tr("New File"), QMessageBox::AcceptRole);
+  QPushButton* replace = ask.addButton(tr("Replace"), QMessageBox::DestructiveRole);
+  ask.setDefaultButton(append);
+  ask.exec();
+  if (ask.clickedButton() == append) startDataOut(path, ExistingFile::Append, false);
+  else if (ask.clickedButton() == numbered) startDataOut(path, ExistingFile::NewName, false);
+  else if (ask.clickedButton() == replace) startDataOut(path, ExistingFile::Fail, true);
+}
+
+}  // namespace imagepro::app

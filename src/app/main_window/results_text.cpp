@@ -1,0 +1,70 @@
+#include "app/main_window/results_text.h"
+
+#include <QStringList>
+
+#include "core/settings/enum_names.h"
+
+namespace imagepro::app {
+
+namespace {
+
+QString fromView(std::string_view s) { return QString::fromUtf8(s.data(), static_cast<qsizetype>(s.size())); }
+
+// Two lines: rotations, then translations, in fixed columns.
+QString poseLines(const char* label, const Pose& p) {
+  return QStringLiteral("%1 Rx %2  Ry %3  Rz %4 deg\n%5 Tx %6  Ty %7  Tz %8 mm")
+      .arg(QLatin1String(label), -5)
+      .arg(p.rx_deg, 7, 'f', 2)
+      .arg(p.ry_deg, 7, 'f', 2)
+      .arg(p.rz_deg, 7, 'f', 2)
+      .arg(QString(), -5)
+      .arg(p.tx_mm, 7, 'f', 2)
+      .arg(p.ty_mm, 7, 'f', 2)
+      .arg(p.tz_mm, 7, 'f', 2);
+}
+
+}  // namespace
+
+QString statusInWords(Status status) {
+  if (status == Status::Ok) return QStringLiteral("ok");
+  return fromView(statusName(status)) + QStringLiteral(": ") + fromView(statusMessage(status));
+}
+
+QString formatResults(const DisplayPacket& packet) {
+  // A narrow column: it sits beside the frame.
+  const FrameResult& r = packet.result;
+  QStringList lines;
+  lines << QStringLiteral("Status    %1").arg(statusInWords(r.status));
+  lines << QStringLiteral("Frame     %1").arg(r.index);
+  if (!r.name.empty()) lines << QStringLiteral("File      %1").arg(QString::fromStdString(r.name));
+  lines << QStringLiteral("Reached   %1").arg(fromView(enumName(r.reached)));
+  const double total = r.times.total();
+  lines << QStringLiteral("Rate      %1 Hz   CPU %2 %").arg(packet.hz, 0, 'f', 1).arg(packet.cpu_percent, 0, 'f', 0);
+  lines << QStringLiteral("Pipeline  %1 us (%2 Hz possible)").arg(total, 0, 'f', 0).arg(total > 0.0 ? 1e6 / total : 0.0, 0, 'f', 0);
+  lines << QStringLiteral("Threshold %1").arg(r.threshold >= 0 ? QString::number(r.threshold) : QStringLiteral("-"));
+  lines << QStringLiteral("Edges     %1 px   Paths %2").arg(r.edge_pixels).arg(r.paths);
+  for (std::size_t i = 0; i < r.targets.size(); ++i) {
+    const TargetSummary& t = r.targets[i];
+    lines << QStringLiteral("Target %1  centre %2, %3 px").arg(i + 1).arg(t.ellipse.cx, 0, 'f', 2).arg(t.ellipse.cy, 0, 'f', 2);
+    lines << QStringLiteral("          axes %1 x %2 px, %3 deg")
+                 .arg(t.ellipse.a, 0, 'f', 2)
+                 .arg(t.ellipse.b, 0, 'f', 2)
+                 .arg(t.ellipse.angle_deg, 0, 'f', 1);
+    if (packet.ellipse_method == EllipseMethod::Bennett) {
+      lines << QStringLiteral("          score %1  quality %2").arg(t.bennett_score, 0, 'f', 0).arg(t.bennett_quality, 0, 'f', 0);
+      lines << QStringLiteral("          symmetry %1").arg(t.bennett_symmetry, 0, 'f', 3);
+    } else {
+      lines << QStringLiteral("          fit error %1").arg(t.fit_error, 0, 'g', 4);
+      lines << QStringLiteral("          Sampson %1 px").arg(t.sampson_px, 0, 'f', 3);
+    }
+  }
+  if (r.pose) lines << poseLines("Pose", *r.pose);
+  else lines << QStringLiteral("Pose      -");
+  if (r.truth) lines << poseLines("Truth", *r.truth);
+  lines << QStringLiteral("Times [us]");
+  for (std::size_t s = 0; s < kStageCount; ++s)
+    lines << QStringLiteral("  %1 %2").arg(QLatin1String(stageName(static_cast<Stage>(s))), -16).arg(r.times.us[s], 8, 'f', 0);
+  return lines.join(QLatin1Char('\n'));
+}
+
+}  // namespace imagepro::app

@@ -1,0 +1,15 @@
+#pragma once
+// The text part of the results area (thesis appendix A.1.2): status in words,
+// threshold, edge and path counts, fit error, the six parameters (and the ground
+// truth for virtual frames), per-stage times, rate and CPU.
+#include <QString>
+
+#include "app/worker/display_packet.h"
+
+namespace imagepro::app {
+
+QString formatResults(const DisplayPacket& packet);
+// "ok" or "NoTarget: no target was found in the frame".
+QString statusInWords(Status status);
+
+}  // namespace imagepro::app

@@ -1,0 +1,128 @@
+#pragma once
+// The frame loop of the application (thesis 5.2.2): an Engine and a FrameSource
+// living in their own thread. Options changed in the GUI land in a pending slot and
+// are applied at the next frame boundary, so methods switch without stopping.
+// Results go to the GUI as small display packets; latest frame wins: while the GUI
+// has not painted the previous packet no new one is sent, so it never falls behind.
+// Every public function is safe to call from any thread.
+#include <QObject>
+#include <QStringList>
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include "app/worker/display_packet.h"
+#include "app/worker/source_kind.h"
+#include "app/main_window/virtual_keys.h"
+#include "core/pipeline/data_out.h"
+#include "core/pipeline/engine.h"
+#include "core/settings/settings.h"
+#include "core/source/source.h"
+
+class QTimer;
+
+namespace imagepro::app {
+
+class Worker : public QObject {
+  Q_OBJECT
+
+ public:
+  explicit Worker(const Settings& settings, QObject* parent = nullptr);
+  ~Worker() override;
+
+  // Pending-slot updates, applied at the next frame boundary (or at once when idle,
+  // reprocessing the current file frame).
+  void setSettings(const Settings& settings);
+  void pressKey(VirtualKey key);
+  // The GUI has shown the last packet: the next frame may send another.
+  void markDisplayed();
+
+  // Starts (or resumes) a live source: Virtual or Camera. File input uses openFiles.
+  void start(SourceKind kind);
+  // Processes the given images (files or folders) in order; the last one stays and is
+  // reprocessed whenever the settings change.
+  void openFiles(const QStringList& paths);
+  void stop();
+  // Data Out to `path`. `existing` says what to do with a file already there; with
+  // `replace` (the user agreed) it is deleted first.
+  void setDataOut(const QString& path, ExistingFile existing, bool replace = false);
+  void closeDataOut();
+  // Sets a camera control now: on the streaming camera when it streams from `device`,
+  // else on the device directly. A refusal comes back as errorOccurred.
+  void setCameraControl(const QString& device, const QString& key, qint64 value);
+  // A copy of the frame last taken from the source (for File input, the still image shown),
+  // answered with frameCaptured(request, ...): empty when there is none (nothing started or
+  // opened yet, or a camera that was stopped and gave its buffers back).
+  void captureFrame(quint64 request);
+
+  // For tests and the status bar.
+  Settings appliedSettings() const;
+  bool isRunning() const { return running_.load(); }
+  std::int64_t framesProcessed() const { return frames_processed_.load(); }
+
+ signals:
+  void packetReady(imagepro::app::DisplayPacketPtr packet);
+  void runningChanged(bool running);
+  void sourceChanged(const QString& description);
+  void errorOccurred(const QString& message);
+  void warningOccurred(const QString& message);  // the source goes on (a camera control not set)
+  void dataOutChanged(const QString& path);  // empty when closed
+  void frameCaptured(quint64 request, cv::Mat grey, QString source, bool running);
+
+ private:
+  // All below run in the worker thread.
+  void doStart(SourceKind kind);
+  void doOpenFiles(const QStringList& paths);
+  void doStop();
+  void doSetDataOut(const QString& path, ExistingFile existing, bool replace);
+  void onIdleUpdate();
+  void tick();
+  void scheduleNext();
+  bool applyPending();
+  bool processFrame(bool from_source);  // false at the end of a stream
+  void afterFrame();
+  void publish();
+  void setRunning(bool running);
+  bool ensureSource(SourceKind kind, const QStringList& paths);
+  void reportSourceError(Status status);
+
+  Engine engine_;
+  std::unique_ptr<FrameSource> source_;
+  SourceKind kind_ = SourceKind::Virtual;
+  Frame file_frame_;           // the last file frame, reprocessed on option changes
+  bool have_file_frame_ = false;
+  FrameResult result_;       // the last processed frame
+  FrameResult step_result_;  // scratch for the next one
+  bool have_result_ = false;
+  DataOut data_out_;
+  QTimer* timer_ = nullptr;
+  std::chrono::steady_clock::time_point next_due_{};
+
+  // Rate and CPU meters.
+  std::chrono::steady_clock::time_point last_frame_time_{};
+  double frame_period_s_ = 0.0;
+  std::chrono::steady_clock::time_point cpu_wall_mark_{};
+  double cpu_time_mark_s_ = 0.0;
+  double cpu_percent_ = 0.0;
+
+  std::vector<PoseSample> history_;
+  bool display_dirty_ = false;
+  std::chrono::steady_clock::time_point last_publish_{};
+
+  std::atomic<bool> running_{false};
+  std::atomic<bool> packet_in_flight_{false};
+  std::atomic<std::int64_t> frames_processed_{0};
+
+  mutable std::mutex pending_mutex_;
+  std::optional<Settings> pending_settings_;
+  std::vector<VirtualKey> pending_keys_;
+  Settings applied_;  // copy of the engine's settings for appliedSettings()
+};
+
+}  // namespace imagepro::app
+
+Q_DECLARE_METATYPE(cv::Mat)

@@ -1,0 +1,125 @@
+// Save / Load / Restore defaults through the window, and files that cannot be used.
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDockWidget>
+#include <QFile>
+#include <QSpinBox>
+#include <QTest>
+
+#include "app/panels/collapsible_group.h"
+#include "app/panels/control_panel.h"
+#include "app/main_window/main_window.h"
+#include "app/worker/worker.h"
+#include "app_test_classes.h"
+#include "app_test_support.h"
+
+namespace imagepro::app::test {
+
+namespace {
+
+std::string json(const Settings& s) { return settingsToJson(s); }
+
+void writeText(const QString& path, const char* text) {
+  QFile f(path);
+  QVERIFY(f.open(QIODevice::WriteOnly));
+  f.write(text);
+}
+
+}  // namespace
+
+void SettingsFileTest::init() {
+  window_ = std::make_unique<MainWindow>();
+  window_->show();
+}
+
+void SettingsFileTest::cleanup() { window_.reset(); }
+
+void SettingsFileTest::roundTrip() {
+  MainWindow& w = *window_;
+  const QString path = scratchDir(QStringLiteral("settings")) + QStringLiteral("/mine.json");
+  auto* method = w.findChild<QComboBox*>(QStringLiteral("thresholdMethod"));
+  auto* value = w.findChild<QSpinBox*>(QStringLiteral("thresholdValue"));
+  QVERIFY(choose(method, ThresholdMethod::Manual));
+  value->setValue(77);
+  QVERIFY(choose(w.findChild<QComboBox*>(QStringLiteral("edgeMethod")), EdgeMethod::SobelThinning));
+  QVERIFY(chooseRadio(w.findChild<QWidget*>(QStringLiteral("applicationLevel")), ApplicationLevel::Edges));
+  Settings changed = w.settings();
+  QVERIFY(w.saveSettingsFile(path));
+
+  w.restoreDefaults();
+  QCOMPARE(json(w.settings()), json(Settings{}));
+  QCOMPARE(method->currentData().toInt(), static_cast<int>(ThresholdOptions{}.method));
+  QCOMPARE(value->value(), ThresholdOptions{}.manual_value);
+  QVERIFY(waitForApplied(w, [](const Settings& s) { return json(s) == json(Settings{}); }));
+
+  QVERIFY(w.loadSettingsFile(path));
+  QCOMPARE(json(w.settings()), json(changed));
+  QCOMPARE(method->currentData().toInt(), static_cast<int>(ThresholdMethod::Manual));
+  QCOMPARE(value->value(), 77);
+  QVERIFY(waitForApplied(w, [&](const Settings& s) { return json(s) == json(changed); }));
+  // What was saved is the settings file of the core, key for key.
+  Settings from_file;
+  std::string error;
+  QVERIFY(ok(loadSettings(path.toStdString(), from_file, error)));
+  QCOMPARE(json(from_file), json(changed));
+}
+
+void SettingsFileTest::malformedFileNamesTheKey() {
+  MainWindow& w = *window_;
+  const QString dir = scratchDir(QStringLiteral("malformed"));
+  const std::string before = json(w.settings());
+  writeText(dir + QStringLiteral("/unknown.json"), R"({"pipeline": {"threshold": {"methd": "manual"}}})");
+  QVERIFY(!w.loadSettingsFile(dir + QStringLiteral("/unknown.json")));
+  QVERIFY2(w.lastError().contains(QStringLiteral("methd")), qPrintable(w.lastError()));
+  QCOMPARE(json(w.settings()), before);
+
+  writeText(dir + QStringLiteral("/type.json"), R"({"camera": {"width": "wide"}})");
+  QVERIFY(!w.loadSettingsFile(dir + QStringLiteral("/type.json")));
+  QVERIFY2(w.lastError().contains(QStringLiteral("width")), qPrintable(w.lastError()));
+
+  // A number beyond a double: the key is named and the window goes on (it aborted once).
+  writeText(dir + QStringLiteral("/overflow.json"), R"({"camera": {"image_plane_distance_mm": 1e400}})");
+  QVERIFY(!w.loadSettingsFile(dir + QStringLiteral("/overflow.json")));
+  QVERIFY2(w.lastError().contains(QStringLiteral("camera.image_plane_distance_mm")), qPrintable(w.lastError()));
+  QCOMPARE(json(w.settings()), before);
+
+  writeText(dir + QStringLiteral("/broken.json"), "{ not json");
+  QVERIFY(!w.loadSettingsFile(dir + QStringLiteral("/broken.json")));
+  QVERIFY(!w.lastError().isEmpty());
+  QCOMPARE(json(w.settings()), before);
+  QCOMPARE(json(w.worker()->appliedSettings()), before);
+}
+
+void SettingsFileTest::unreadableFileIsAnError() {
+  MainWindow& w = *window_;
+  const QString dir = scratchDir(QStringLiteral("unreadable"));
+  QVERIFY(!w.loadSettingsFile(dir + QStringLiteral("/absent.json")));
+  QVERIFY(w.lastError().contains(QStringLiteral("absent.json")));
+  QVERIFY(!w.saveSettingsFile(dir + QStringLiteral("/no/such/dir/s.json")));
+  QVERIFY(!w.lastError().isEmpty());
+}
+
+void SettingsFileTest::windowLayoutIsRemembered() {
+  MainWindow& w = *window_;
+  w.resize(1111, 777);
+  auto* plots = w.findChild<QDockWidget*>(QStringLiteral("plotDock"));
+  QVERIFY(plots && plots->isVisible());
+  plots->hide();
+  CollapsibleGroup* folded = w.controlPanel()->groups().at(2);
+  folded->setExpanded(false);
+  const QString title = folded->title();
+  w.close();  // saves the layout
+  window_.reset();
+
+  MainWindow again;
+  again.show();
+  QCOMPARE(again.size(), QSize(1111, 777));
+  QVERIFY(!again.findChild<QDockWidget*>(QStringLiteral("plotDock"))->isVisible());
+  for (CollapsibleGroup* g : again.controlPanel()->groups()) QCOMPARE(g->isExpanded(), g->title() != title);
+  // Put things back for the tests after this one.
+  again.findChild<QDockWidget*>(QStringLiteral("plotDock"))->show();
+  for (CollapsibleGroup* g : again.controlPanel()->groups()) g->setExpanded(true);
+  again.close();
+}
+
+}  // namespace imagepro::app::test
