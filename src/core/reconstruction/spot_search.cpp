@@ -301,16 +301,33 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
   const EllipseForm rim(detected, 1.0);
   const double rhoMax = std::max(0.5, 1.0 - kSpotRimClearancePx / detected.b);
   const double rho2Max = rhoMax * rhoMax;
+  auto grownBox = [&](const SpotComponent& cmp) {
+    return cv::Rect(crop.x + cmp.x0 - kSpotBoxGrowPx, crop.y + cmp.y0 - kSpotBoxGrowPx,
+                    cmp.x1 - cmp.x0 + 1 + 2 * kSpotBoxGrowPx, cmp.y1 - cmp.y0 + 1 + 2 * kSpotBoxGrowPx) &
+           cv::Rect(0, 0, grey.cols, grey.rows);
+  };
+  // On a small, far target the two spots lie a few pixels apart and each grown box holds
+  // part of the other spot, which would pull both centroids towards each other. Each box
+  // then keeps only the pixels on its own side of the line halfway between the two spots:
+  // what that cuts off of a spot's own blur lies beyond half their distance and weighs
+  // little.
+  const bool boxesOverlap = (grownBox(kept[0]) & grownBox(kept[1])).area() > 0;
+  auto boxCentre = [&](const SpotComponent& cmp) {
+    return Eigen::Vector2d(crop.x + 0.5 * (cmp.x0 + cmp.x1), crop.y + 0.5 * (cmp.y0 + cmp.y1));
+  };
+  const Eigen::Vector2d midway = 0.5 * (boxCentre(kept[0]) + boxCentre(kept[1]));
   std::array<Eigen::Vector2d, 2> centroid;
   for (int k = 0; k < 2; ++k) {
-    const SpotComponent& cmp = kept[k];
-    const cv::Rect box = cv::Rect(crop.x + cmp.x0 - kSpotBoxGrowPx, crop.y + cmp.y0 - kSpotBoxGrowPx,
-                                  cmp.x1 - cmp.x0 + 1 + 2 * kSpotBoxGrowPx,
-                                  cmp.y1 - cmp.y0 + 1 + 2 * kSpotBoxGrowPx) &
-                         cv::Rect(0, 0, grey.cols, grey.rows);
+    const cv::Rect box = grownBox(kept[k]);
+    const Eigen::Vector2d towardsOther = boxCentre(kept[1 - k]) - boxCentre(kept[k]);
+    // Whether a pixel counts: inside the rim's clearance, and on this spot's side.
+    auto counts = [&](int x, int y) {
+      return rim.rho2(x, y) < rho2Max &&
+             (!boxesOverlap || (Eigen::Vector2d(x, y) - midway).dot(towardsOther) < 0.0);
+    };
     // The ellipse is convex: with the box's corners inside, every pixel is.
     const int bx1 = box.x + box.width - 1, by1 = box.y + box.height - 1;
-    const bool boxInside = rim.rho2(box.x, box.y) < rho2Max && rim.rho2(bx1, box.y) < rho2Max &&
+    const bool boxInside = !boxesOverlap && rim.rho2(box.x, box.y) < rho2Max && rim.rho2(bx1, box.y) < rho2Max &&
                            rim.rho2(box.x, by1) < rho2Max && rim.rho2(bx1, by1) < rho2Max;
     // The local white level: the box's border pixels inside the rim.
     double borderSum = 0.0;
@@ -319,7 +336,7 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
       const std::uint8_t* row = grey.ptr<std::uint8_t>(y);
       const bool edgeRow = y == box.y || y == box.y + box.height - 1;
       for (int x = box.x; x < box.x + box.width; x += edgeRow ? 1 : std::max(box.width - 1, 1)) {
-        if (!boxInside && rim.rho2(x, y) >= rho2Max) continue;
+        if (!boxInside && !counts(x, y)) continue;
         borderSum += row[x];
         ++borderCount;
       }
@@ -340,7 +357,7 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
         rowXG = box.x * rowG + rowIG;
       } else {
         for (int x = box.x; x < box.x + box.width; ++x) {
-          if (rim.rho2(x, y) >= rho2Max) continue;
+          if (!counts(x, y)) continue;
           ++rowN;
           rowX += x;
           rowG += row[x];
