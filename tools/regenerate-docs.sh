@@ -8,6 +8,7 @@
 #                                       fails on any difference in docs/*.md, printing it
 #                                       (figures and timings are not compared)
 #   tools/regenerate-docs.sh --list     the generators, their cost and what they write
+#   tools/regenerate-docs.sh --only NAME   one generator of the list, cheap or slow
 #
 # Options: --build-dir DIR (default: $BUILD_DIR, else build/). Build imagepro-cli and
 # imagepro-studies first (tools/setup.sh build).
@@ -26,12 +27,14 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build_dir="${BUILD_DIR:-$root/build}"
 mode=all
-usage() { sed -n '2,13p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2; exit 2; }
+only=""
+usage() { sed -n '2,14p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 while (($#)); do
   case "$1" in
     --cheap) mode=cheap ;;
     --check) mode=check ;;
     --list) mode=list ;;
+    --only) (($# >= 2)) || usage; only="$2"; shift ;;
     --build-dir) (($# >= 2)) || usage; build_dir="$2"; shift ;;
     -h|--help) usage ;;
     *) echo "regenerate-docs: unknown option $1" >&2; usage ;;
@@ -183,9 +186,15 @@ gen_screenshots() {
 
 for g in "${generators[@]}"; do
   IFS='|' read -r name cost _ <<<"$g"
-  [ "$mode" = all ] || [ "$cost" = cheap ] || continue
+  if [ -n "$only" ]; then
+    [ "$name" = "$only" ] || continue
+  elif [ "$mode" != all ] && [ "$cost" != cheap ]; then
+    continue
+  fi
   "gen_${name//-/_}"
+  ran=1
 done
+[ -n "${ran:-}" ] || { echo "regenerate-docs: no generator $only (--list names them)" >&2; exit 2; }
 
 if [ "$mode" = check ]; then
   status=0
