@@ -97,7 +97,7 @@ timed() {  # LABEL COMMAND...: one progress line, with the seconds taken
   local label="$1" start=$SECONDS; shift
   step=$((step + 1))
   log "[$step] $label ..."
-  "$@"
+  "$@" || return 1
   log "[$step] $label: done in $((SECONDS - start)) s"
 }
 
