@@ -175,7 +175,7 @@ gen_screenshots() {
   [ -x "$app" ] && [ -x "$tests" ] || { log "screenshots skipped: build imagepro and test_app first"; return 0; }
   cd "$root"
   screenshot docs/app-virtual.png env QT_QPA_PLATFORM=xcb "${xvfb[@]}" "$app" \
-    --config docs/app-screenshot-settings.json --source virtual --screenshot docs/app-virtual.png --after 5
+    --config docs/app-screenshot-settings.json --source virtual --screenshot docs/app-virtual.png --after 7
   screenshot docs/app-file.png env QT_QPA_PLATFORM=xcb "${xvfb[@]}" "$app" data/samples/sample02_clutter.png \
     --screenshot docs/app-file.png --after 2
   screenshot docs/app-calibration-wizard.png env IMAGEPRO_WIZARD_SCREENSHOT=docs/app-calibration-wizard.png \
