@@ -20,8 +20,9 @@
 #     <!-- generated: COMMAND -->        (the output is Markdown, e.g. a table)
 #     <!-- generated code: COMMAND -->   (the output is shown in a ``` block)
 #     <!-- end generated -->
-#   replaced by COMMAND's standard output. COMMAND is imagepro-cli or imagepro-studies
-#   with plain arguments (no quotes or shell syntax), run from the repository's root.
+#   replaced by COMMAND's standard output between blank lines. COMMAND is imagepro-cli or
+#   imagepro-studies with plain arguments (no quotes or shell syntax), run from the
+#   repository's root.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -126,10 +127,12 @@ fill_blocks() {
     elif [[ "$line" =~ ^\<!--\ generated(\ code)?:\ (.*)\ --\>$ ]]; then
       code="${BASH_REMATCH[1]}" command="${BASH_REMATCH[2]}"
       [[ "$command" =~ ^[A-Za-z0-9./=,_\ -]+$ ]] || { log "$doc: not a plain command: $command"; return 1; }
-      printf '%s\n' "$line" >>"$out"
+      # Blank lines around the output: a table runs on into any line that follows it.
+      printf '%s\n\n' "$line" >>"$out"
       [ -n "$code" ] && echo '```' >>"$out"
       timed "${doc#"$work"/}: $command" run_doc_command "$command" >>"$out" || return 1
       [ -n "$code" ] && echo '```' >>"$out"
+      echo >>"$out"
       inside=1
       continue
     fi
