@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include "core/common/atomic_file.h"
@@ -69,6 +70,31 @@ TEST(CliTwoTargets, CsvReplacesTheOldFileWhole) {
   const CliRun bad = cli("two-targets --virtual --frames 2 --position 1 --csv " + unwritable);
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find(unwritable), std::string::npos) << bad.err;
+}
+
+// The Markdown table docs/case-studies.md shows: a header, a rule and one row per position
+// and correction, the same figures as the text summary's.
+TEST(CliTwoTargets, MarkdownFormatIsTheDocsTable) {
+  const CliRun md = cli("two-targets --virtual --frames 2 --position 1 --format markdown");
+  ASSERT_EQ(md.exit_code, 0) << md.err;
+  const auto rows = lines(md.out);
+  ASSERT_EQ(rows.size(), 4u) << md.out;
+  EXPECT_EQ(rows[0], "| position | correction | distance error mean / std / max [mm] | angle error mean / std / max [deg] |");
+  EXPECT_EQ(rows[1], "|---|---|---|---|");
+  EXPECT_EQ(rows[2].rfind("| 1 | on | ", 0), 0u) << rows[2];
+  EXPECT_EQ(rows[3].rfind("| 1 | off | ", 0), 0u) << rows[3];
+  const CliRun text = cli("two-targets --virtual --frames 2 --position 1");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  // The text row "1 on 2/2 MEAN ..." gives the Markdown row's first figure.
+  std::string mean;
+  for (const std::string& row : lines(text.out)) {
+    std::string position, correction, measured;
+    std::istringstream(row) >> position >> correction >> measured;
+    if (position == "1" && correction == "on") std::istringstream(row) >> position >> correction >> measured >> mean;
+  }
+  ASSERT_FALSE(mean.empty()) << text.out;
+  EXPECT_EQ(rows[2].rfind("| 1 | on | " + mean + " / ", 0), 0u) << rows[2] << "\n" << text.out;
+  EXPECT_EQ(cli("two-targets --virtual --frames 2 --format html").exit_code, 2);
 }
 
 }  // namespace

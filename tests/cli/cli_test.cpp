@@ -32,7 +32,8 @@ TEST(Cli, OverviewListsTheCommands) {
   for (const char* c : {"reconstruct", "render", "threshold", "edges", "bench", "settings", "pendulum", "two-targets"})
     EXPECT_NE(r.out.find(c), std::string::npos) << c;
   // The studies are imagepro-studies' commands.
-  for (const char* c : {"accuracy", "calibration-study", "track-study", "bench-peers"})
+  for (const char* c :
+       {"accuracy", "calibration-study", "track-study", "pendulum-study", "ellipse-library", "bench-peers"})
     EXPECT_EQ(r.out.find(std::string("  ") + c + " "), std::string::npos) << c;
 }
 

@@ -23,7 +23,8 @@ using test::studies;
 TEST(Studies, OverviewListsTheStudiesAndEachHasHelp) {
   const CliRun r = studies("--help");
   ASSERT_EQ(r.exit_code, 0);
-  for (const char* c : {"accuracy", "calibration-study", "track-study", "bench-peers"})
+  for (const char* c :
+       {"accuracy", "calibration-study", "track-study", "pendulum-study", "ellipse-library", "bench-peers"})
     EXPECT_NE(r.out.find(std::string("  ") + c + " "), std::string::npos) << c;
   for (const std::string& line : lines(r.out)) {
     if (line.rfind("  ", 0) != 0) continue;
@@ -35,6 +36,28 @@ TEST(Studies, OverviewListsTheStudiesAndEachHasHelp) {
   const CliRun unknown = studies("reconstruct");
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_NE(unknown.err.find("imagepro-studies: unknown command \"reconstruct\""), std::string::npos) << unknown.err;
+}
+
+// pendulum-study prints only Markdown tables; a table it does not know is a usage error.
+TEST(Studies, PendulumStudyPrintsTheAmplitudeTable) {
+  const CliRun r = studies("pendulum-study --table amplitudes");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 6u) << r.out;  // header, rule, 5, 10, 15 and 25 deg
+  EXPECT_EQ(rows[0], "| amplitude | length [mm] | period [s] (truth) | g [m/s^2] |");
+  EXPECT_EQ(rows[4].rfind("| 15 deg | 444.", 0), 0u) << rows[4];
+  EXPECT_EQ(studies("pendulum-study --table sets").exit_code, 2);
+}
+
+// ellipse-library classifies the binary library as the thesis's direct fit must: every
+// ellipse found, no rectangle accepted.
+TEST(Studies, EllipseLibraryTheDefaultRuleClassifiesTheBinaryLibrary) {
+  const CliRun r = studies("ellipse-library --table methods");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 8u) << r.out;  // header, rule, two thesis rows, four of ours
+  EXPECT_EQ(rows[4], "| direct fit, E_rel ≤ 0.02 + trace (default) | 70 of 70 | 0 of 67 | this implementation |");
+  EXPECT_EQ(studies("ellipse-library --table grey").exit_code, 2);
 }
 
 // The accuracy study's virtual part end to end on the smallest run: a complete report
