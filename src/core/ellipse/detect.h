@@ -47,6 +47,7 @@
 #include "core/ellipse/bennett.h"
 #include "core/ellipse/direct_fit.h"
 #include "core/ellipse/ellipse.h"
+#include "core/ellipse/ellipse_trace.h"
 #include "core/settings/options.h"
 
 namespace imagepro {

@@ -19,7 +19,6 @@
 //  * sampson_px: the mean Sampson distance |F| / |grad F| of the points, in pixels, a
 //    first-order approximation of the mean geometric distance to the ellipse.
 #include <Eigen/Core>
-#include <opencv2/core.hpp>
 
 #include <array>
 #include <cstddef>
@@ -81,21 +80,5 @@ Status fitEllipseDirect(std::span<const Eigen::Vector2d> points, EllipseFit& fit
 
 // The signed Sampson distance of one point (pixels, negative inside the ellipse).
 double sampsonDistance(const EllipseFit& fit, double x, double y);
-
-// How completely a point set traces its fitted ellipse. The perimeter is cut into arcs
-// of about 3 px; an arc is traced when a point within `inlier_px` (Sampson distance) of
-// the ellipse lies on it, and observable when its middle lies inside the image.
-struct EllipseTrace {
-  double mean_sampson_px = 0.0;  // over all points
-  double traced = 0.0;           // fraction of the perimeter traced
-  double observable = 1.0;       // fraction of the perimeter inside the image
-  std::size_t inliers = 0;       // points within inlier_px
-};
-
-// `image` empty: the whole perimeter counts as observable.
-void traceEllipse(const EllipseFit& fit, std::span<const EdgePixel> points, double inlier_px,
-                  cv::Size image, EllipseTrace& out);
-void traceEllipse(const EllipseFit& fit, std::span<const Eigen::Vector2d> points, double inlier_px,
-                  cv::Size image, EllipseTrace& out);
 
 }  // namespace imagepro

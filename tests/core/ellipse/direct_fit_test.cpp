@@ -13,23 +13,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// n points at equal parameter steps over [from, to) degrees, plus Gaussian noise.
-std::vector<Eigen::Vector2d> sampleEllipse(const Ellipse& e, int n, double from_deg = 0.0, double to_deg = 360.0,
-                                           double noise = 0.0, unsigned seed = 7) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  const double t = e.angle_deg * kPi / 180.0;
-  std::vector<Eigen::Vector2d> pts;
-  for (int i = 0; i < n; ++i) {
-    const double s = (from_deg + (to_deg - from_deg) * i / n) * kPi / 180.0;
-    const double x = e.a * std::cos(s), y = e.b * std::sin(s);
-    Eigen::Vector2d p(e.cx + x * std::cos(t) - y * std::sin(t), e.cy + x * std::sin(t) + y * std::cos(t));
-    if (noise > 0.0) p += noise * Eigen::Vector2d(gauss(rng), gauss(rng));
-    pts.push_back(p);
-  }
-  return pts;
-}
-
 void expectSameEllipse(const Ellipse& got, const Ellipse& want, double tol_px, double tol_deg) {
   EXPECT_NEAR(got.cx, want.cx, tol_px);
   EXPECT_NEAR(got.cy, want.cy, tol_px);
@@ -42,7 +25,7 @@ TEST(DirectFit, ExactRecoveryOfAllParameters) {
   for (const Ellipse e : {Ellipse{320.0, 240.0, 100.0, 40.0, 30.0}, Ellipse{12.5, 470.0, 7.0, 3.0, -61.0},
                           Ellipse{600.0, 20.0, 250.0, 200.0, 89.0}, Ellipse{-50.0, 900.0, 30.0, 5.0, 0.0},
                           Ellipse{1e4, -3e3, 2.0, 1.0, 45.0}}) {
-    const auto pts = sampleEllipse(e, 50);
+    const auto pts = test::sampleEllipse(e, 50);
     EllipseFit fit;
     ASSERT_EQ(fitEllipseDirect(pts, fit), Status::Ok);
     expectSameEllipse(fit.ellipse, e, 1e-7 * e.a, 1e-6);
@@ -57,7 +40,7 @@ TEST(DirectFit, ExactRecoveryFromPartialArcs) {
   // An arc cut by the image border (thesis fig. 2.27) determines the ellipse as well.
   const Ellipse e{100.0, 80.0, 60.0, 25.0, 20.0};
   for (double span : {180.0, 90.0, 45.0}) {
-    const auto pts = sampleEllipse(e, 30, 10.0, 10.0 + span);
+    const auto pts = test::sampleEllipse(e, 30, 10.0, 10.0 + span);
     EllipseFit fit;
     ASSERT_EQ(fitEllipseDirect(pts, fit), Status::Ok) << span;
     expectSameEllipse(fit.ellipse, e, 1e-6 * e.a, 1e-5);
@@ -67,7 +50,7 @@ TEST(DirectFit, ExactRecoveryFromPartialArcs) {
 TEST(DirectFit, NoisyRecovery) {
   const Ellipse e{320.0, 240.0, 80.0, 40.0, 25.0};
   const double sigma = 0.3;
-  const auto pts = sampleEllipse(e, 400, 0.0, 360.0, sigma);
+  const auto pts = test::sampleEllipse(e, 400, 0.0, 360.0, sigma);
   EllipseFit fit;
   ASSERT_EQ(fitEllipseDirect(pts, fit), Status::Ok);
   expectSameEllipse(fit.ellipse, e, 0.1, 0.3);
@@ -78,7 +61,7 @@ TEST(DirectFit, NoisyRecovery) {
 
 TEST(DirectFit, RelativeErrorIsSimilarityInvariantSampsonScalesWithSize) {
   const Ellipse e{50.0, 60.0, 30.0, 12.0, 10.0};
-  auto pts = sampleEllipse(e, 200, 0.0, 360.0, 0.2, 3);
+  auto pts = test::sampleEllipse(e, 200, 0.0, 360.0, 0.2, 3);
   EllipseFit small, large;
   ASSERT_EQ(fitEllipseDirect(pts, small), Status::Ok);
   for (auto& p : pts) p = 10.0 * p + Eigen::Vector2d(-3000.0, 777.0);
@@ -91,8 +74,8 @@ TEST(DirectFit, RelativeErrorIsSimilarityInvariantSampsonScalesWithSize) {
 TEST(DirectFit, SampsonDistanceOfOffsetPoints) {
   const Ellipse e{0.0, 0.0, 50.0, 50.0, 0.0};
   EllipseFit fit;
-  ASSERT_EQ(fitEllipseDirect(sampleEllipse(e, 60), fit), Status::Ok);
-  std::vector<Eigen::Vector2d> outside = sampleEllipse({0.0, 0.0, 50.5, 50.5, 0.0}, 60);
+  ASSERT_EQ(fitEllipseDirect(test::sampleEllipse(e, 60), fit), Status::Ok);
+  std::vector<Eigen::Vector2d> outside = test::sampleEllipse({0.0, 0.0, 50.5, 50.5, 0.0}, 60);
   EXPECT_NEAR(meanSampsonDistance(fit, outside), 0.5, 0.005);
   EXPECT_NEAR(sampsonDistance(fit, 49.0, 0.0), -1.0, 0.02);  // inside is negative
   EXPECT_NEAR(sampsonDistance(fit, 0.0, 52.0), 2.0, 0.05);
@@ -120,8 +103,8 @@ TEST(DirectFit, PixelAndPointOverloadsAgree) {
 TEST(DirectFit, TooFewPoints) {
   EllipseFit fit;
   EXPECT_EQ(fitEllipseDirect(std::vector<Eigen::Vector2d>{}, fit), Status::TooFewPoints);
-  EXPECT_EQ(fitEllipseDirect(sampleEllipse({0, 0, 10, 5, 0}, 5), fit), Status::TooFewPoints);
-  EXPECT_EQ(fitEllipseDirect(sampleEllipse({0, 0, 10, 5, 0}, 6), fit), Status::Ok);
+  EXPECT_EQ(fitEllipseDirect(test::sampleEllipse({0, 0, 10, 5, 0}, 5), fit), Status::TooFewPoints);
+  EXPECT_EQ(fitEllipseDirect(test::sampleEllipse({0, 0, 10, 5, 0}, 6), fit), Status::Ok);
 }
 
 TEST(DirectFit, DegenerateInputs) {
@@ -132,7 +115,7 @@ TEST(DirectFit, DegenerateInputs) {
   same.assign(10, Eigen::Vector2d(4.0, 4.0));
   EXPECT_EQ(fitEllipseDirect(same, fit), Status::DegenerateFit);
   // Eight points but only four distinct: a whole family of conics passes through them.
-  const auto four = sampleEllipse({0, 0, 10, 5, 0}, 4);
+  const auto four = test::sampleEllipse({0, 0, 10, 5, 0}, 4);
   for (int k = 0; k < 2; ++k) repeated.insert(repeated.end(), four.begin(), four.end());
   EXPECT_EQ(fitEllipseDirect(repeated, fit), Status::DegenerateFit);
 }
@@ -164,37 +147,11 @@ TEST(DirectFit, DigitisedArcsStayEllipses) {
   const Ellipse e{300.0, 200.0, 90.0, 50.0, 15.0};
   for (double span : {120.0, 90.0, 60.0}) {
     std::vector<Eigen::Vector2d> pts;
-    for (const auto& p : sampleEllipse(e, 200, 30.0, 30.0 + span))
+    for (const auto& p : test::sampleEllipse(e, 200, 30.0, 30.0 + span))
       pts.emplace_back(std::round(p.x()), std::round(p.y()));
     EllipseFit fit;
     EXPECT_EQ(fitEllipseDirect(pts, fit), Status::Ok) << span;
   }
-}
-
-TEST(TraceEllipse, FullAndPartialContours) {
-  const Ellipse e{320.0, 240.0, 60.0, 30.0, 30.0};
-  EllipseFit fit;
-  ASSERT_EQ(fitEllipseDirect(sampleEllipse(e, 400), fit), Status::Ok);
-  EllipseTrace trace;
-  traceEllipse(fit, sampleEllipse(e, 400), 1.0, cv::Size(), trace);
-  EXPECT_DOUBLE_EQ(trace.traced, 1.0);
-  EXPECT_DOUBLE_EQ(trace.observable, 1.0);
-  EXPECT_EQ(trace.inliers, 400u);
-  // Half of the contour (by arc length: the ellipse is symmetric) traces about half.
-  traceEllipse(fit, sampleEllipse(e, 200, 0.0, 180.0), 1.0, cv::Size(), trace);
-  EXPECT_NEAR(trace.traced, 0.5, 0.03);
-  // Points 2 px off are not inliers at 1 px.
-  traceEllipse(fit, sampleEllipse({e.cx, e.cy, e.a + 2, e.b + 2, e.angle_deg}, 400), 1.0, cv::Size(), trace);
-  EXPECT_EQ(trace.inliers, 0u);
-  EXPECT_DOUBLE_EQ(trace.traced, 0.0);
-  EXPECT_NEAR(trace.mean_sampson_px, 2.0, 0.15);  // first order: a little short
-  // An ellipse centred on the left image border: half of it is observable.
-  EllipseFit left;
-  ASSERT_EQ(fitEllipseDirect(sampleEllipse({0.0, 240.0, 50.0, 50.0, 0.0}, 100), left), Status::Ok);
-  traceEllipse(left, sampleEllipse({0.0, 240.0, 50.0, 50.0, 0.0}, 100, -90.0, 90.0), 1.0, cv::Size(640, 480),
-               trace);
-  EXPECT_NEAR(trace.observable, 0.5, 0.03);
-  EXPECT_NEAR(trace.traced, 0.5, 0.03);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "core/common/simd_level.h"
 #include "core/ellipse/direct_fit.h"
+#include "core/ellipse/ellipse_trace.h"
 #include "core/ellipse/pixel_passes.h"
 
 namespace imagepro {

@@ -1,9 +1,12 @@
 #pragma once
-// Shared helpers of the ellipse tests: the pipeline up to the connected paths, and the
-// exact image of the target's disk for a pose.
+// Shared helpers of the ellipse tests: the pipeline up to the connected paths, the
+// exact image of the target's disk for a pose, and points sampled on an ellipse.
 #include <Eigen/Dense>
 #include <opencv2/core.hpp>
 
+#include <cmath>
+#include <numbers>
+#include <random>
 #include <vector>
 
 #include "core/common/geometry.h"
@@ -52,6 +55,23 @@ inline Ellipse diskImage(const CameraModel& cam, const TargetGeometry& target, c
   Ellipse e;
   ellipseFromConic(c / c.norm(), e);
   return e;
+}
+
+// n points at equal parameter steps over [from, to) degrees, plus Gaussian noise.
+inline std::vector<Eigen::Vector2d> sampleEllipse(const Ellipse& e, int n, double from_deg = 0.0,
+                                                  double to_deg = 360.0, double noise = 0.0, unsigned seed = 7) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  const double t = e.angle_deg * std::numbers::pi / 180.0;
+  std::vector<Eigen::Vector2d> pts;
+  for (int i = 0; i < n; ++i) {
+    const double s = (from_deg + (to_deg - from_deg) * i / n) * std::numbers::pi / 180.0;
+    const double x = e.a * std::cos(s), y = e.b * std::sin(s);
+    Eigen::Vector2d p(e.cx + x * std::cos(t) - y * std::sin(t), e.cy + x * std::sin(t) + y * std::cos(t));
+    if (noise > 0.0) p += noise * Eigen::Vector2d(gauss(rng), gauss(rng));
+    pts.push_back(p);
+  }
+  return pts;
 }
 
 // Angle difference modulo 180 degrees.
