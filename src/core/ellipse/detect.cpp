@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 
+#include "core/ellipse/fast_atan2.h"
 #include "core/ellipse/pixel_passes.h"
 
 namespace imagepro {
@@ -236,17 +237,25 @@ Status consensusFit(const EllipseOptions& o, std::span<const EdgePixel> path, El
     // it), then the inliers.
     std::size_t count = 0;
     std::uint64_t bins = 0;
+    int covered = 0;
     const double th = trial.ellipse.angle_deg * kPi / 180.0;
     const double cs = std::cos(th), sn = std::sin(th);
-    for (std::size_t k = 0; k < n; k += stride) {
+    const double inv_a = 1.0 / trial.ellipse.a, inv_b = 1.0 / trial.ellipse.b;
+    const SampsonBand band(trial, inlier_px);
+    std::size_t left = scored;  // points still to score
+    for (std::size_t k = 0; k < n; k += stride, --left) {
+      // Each point sets at most one bin: a trial that cannot reach the best's coverage
+      // any more cannot win.
+      if (covered + static_cast<int>(left) < best_covered) break;
       const double x = path[k].x, y = path[k].y;
-      if (std::abs(sampsonDistance(trial, x, y)) > inlier_px) continue;
+      if (!band.holds(x, y)) continue;
       ++count;
       const double dx = x - trial.ellipse.cx, dy = y - trial.ellipse.cy;
-      const double t = std::atan2((-dx * sn + dy * cs) / trial.ellipse.b, (dx * cs + dy * sn) / trial.ellipse.a);
-      bins |= std::uint64_t{1} << std::min(63, static_cast<int>((t + kPi) / (2.0 * kPi) * 64.0));
+      const double t = fastAtan2((-dx * sn + dy * cs) * inv_b, (dx * cs + dy * sn) * inv_a);
+      const std::uint64_t bin = std::uint64_t{1} << std::min(63, static_cast<int>((t + kPi) / (2.0 * kPi) * 64.0));
+      covered += (bins & bin) == 0;
+      bins |= bin;
     }
-    const int covered = std::popcount(bins);
     if (covered > best_covered || (covered == best_covered && count > best_count)) {
       best_covered = covered;
       best_count = count;
@@ -262,13 +271,17 @@ Status consensusFit(const EllipseOptions& o, std::span<const EdgePixel> path, El
     }
   }
   best_count = 0;
-  for (const EdgePixel& p : path) best_count += std::abs(sampsonDistance(best, p.x, p.y)) <= inlier_px;
+  if (best_covered > 0) {
+    const SampsonBand band(best, inlier_px);
+    for (const EdgePixel& p : path) best_count += band.holds(p.x, p.y);
+  }
   if (best_count < 6) return Status::NotAnEllipse;
   // Refit on the inliers, twice: the consensus ellipse is only as good as six points.
   for (int round = 0; round < 2; ++round) {
     ws.inliers.clear();
+    const SampsonBand band(best, inlier_px);
     for (const EdgePixel& p : path)
-      if (std::abs(sampsonDistance(best, p.x, p.y)) <= inlier_px) ws.inliers.push_back(p);
+      if (band.holds(p.x, p.y)) ws.inliers.push_back(p);
     ConicMoments m;
     m.add(std::span<const EdgePixel>(ws.inliers));
     const Status st = fitEllipse(m, trial);
@@ -333,11 +346,12 @@ std::size_t gatherOtherPaths(const EllipseOptions& o, const Paths& paths, std::s
   const cv::Rect box(static_cast<int>(std::floor(e.cx - reach)), static_cast<int>(std::floor(e.cy - reach)),
                      static_cast<int>(2.0 * reach) + 2, static_cast<int>(2.0 * reach) + 2);
   std::size_t added = 0;
+  const SampsonBand band(fit, o.trace_inlier_px);
   for (std::size_t j = 0; j < ws.paths.size(); ++j) {
     const PathSummary& t = ws.paths[j];
     if (j == self || !(t.polarity < 0.0) || (t.bbox & box).area() == 0) continue;
     for (const EdgePixel& p : paths.path(j)) {
-      if (std::abs(sampsonDistance(fit, p.x, p.y)) > o.trace_inlier_px) continue;
+      if (!band.holds(p.x, p.y)) continue;
       if (p.gx * (p.x - e.cx) + p.gy * (p.y - e.cy) >= 0.0) continue;  // gradient points outwards
       ws.inliers.push_back(p);
       ++added;
@@ -357,8 +371,9 @@ Status robustTarget(const EllipseOptions& o, const Paths& paths, std::size_t i, 
   // Refit on the union twice, as the consensus did on the path alone.
   for (int round = 0; round < 2; ++round) {
     ws.inliers.clear();
+    const SampsonBand band(fit, o.trace_inlier_px);
     for (const EdgePixel& p : paths.path(i))
-      if (std::abs(sampsonDistance(fit, p.x, p.y)) <= o.trace_inlier_px) ws.inliers.push_back(p);
+      if (band.holds(p.x, p.y)) ws.inliers.push_back(p);
     if (gatherOtherPaths(o, paths, i, fit, ws) == 0) return Status::NotAnEllipse;
     ConicMoments m;
     m.add(std::span<const EdgePixel>(ws.inliers));

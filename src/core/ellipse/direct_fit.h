@@ -81,4 +81,26 @@ Status fitEllipseDirect(std::span<const Eigen::Vector2d> points, EllipseFit& fit
 // The signed Sampson distance of one point (pixels, negative inside the ellipse).
 double sampsonDistance(const EllipseFit& fit, double x, double y);
 
+// Whether points lie within `limit_px` (Sampson distance) of a fit's ellipse: the test
+// std::abs(sampsonDistance(fit, x, y)) <= limit_px, without its division and root, for
+// the loops that ask it of every point of a path many times over.
+class SampsonBand {
+ public:
+  SampsonBand(const EllipseFit& fit, double limit_px)
+      : c_(fit.normalised), inv_scale_(1.0 / fit.scale), ox_(fit.origin.x()), oy_(fit.origin.y()),
+        limit2_(limit_px * limit_px * inv_scale_ * inv_scale_) {}
+  bool holds(double x, double y) const {
+    const double u = (x - ox_) * inv_scale_, v = (y - oy_) * inv_scale_;
+    const double f = c_(0) * u * u + c_(1) * u * v + c_(2) * v * v + c_(3) * u + c_(4) * v + c_(5);
+    const double gu = 2.0 * c_(0) * u + c_(1) * v + c_(3);
+    const double gv = c_(1) * u + 2.0 * c_(2) * v + c_(4);
+    const double g2 = gu * gu + gv * gv;
+    return g2 > 0.0 && f * f <= limit2_ * g2;
+  }
+
+ private:
+  Conic c_;
+  double inv_scale_, ox_, oy_, limit2_;
+};
+
 }  // namespace imagepro

@@ -11,6 +11,7 @@
 #endif
 
 #include "core/common/simd_level.h"
+#include "core/ellipse/fast_atan2.h"
 
 namespace imagepro {
 
@@ -21,19 +22,6 @@ constexpr double kPi = 0.5 * kTwoPi;
 constexpr int kArcSamples = 128;  // parametric samples of the arc-length table
 constexpr int kMaxArcs = 512;
 constexpr double kArcLengthPx = 3.0;
-
-// atan2 to within 1e-5 rad, several times cheaper than std::atan2: enough to put a
-// point on a 3-pixel arc.
-inline double fastAtan2(double y, double x) {
-  const double ax = std::abs(x), ay = std::abs(y);
-  const double hi = std::max(ax, ay), lo = std::min(ax, ay);
-  if (!(hi > 0.0)) return 0.0;
-  const double q = lo / hi, q2 = q * q;  // atan(q), q in [0, 1]: odd minimax polynomial
-  double r = q * (0.99997726 + q2 * (-0.33262347 + q2 * (0.19354346 + q2 * (-0.11643287 + q2 * (0.05265332 + q2 * -0.01172120)))));
-  if (ay > ax) r = 0.5 * kPi - r;
-  if (x < 0.0) r = kPi - r;
-  return y < 0.0 ? -r : r;
-}
 
 // cos t and sin t at t = 2 pi k / kArcSamples by a rotation recurrence (no
 // trigonometry), the same for every ellipse: computed once.
