@@ -164,12 +164,13 @@ const CommandRegistration kRegistration{{
     choicesHelp<MotionKind>() +
     "  --axis A          the parameter the motion moves: " + enumChoices<PoseAxis>() + "\n"
     "  --amplitude A     mm or degrees;  --period S  seconds;  --rate HZ  frames per second\n"
-    "  --pose RX,RY,RZ,TX,TY,TZ   the initial pose (degrees -360..360, mm, TZ > 0)\n"
-    "  --noise S         Gaussian noise sigma, 0..255 grey levels (grey mode)\n"
-    "  --blur S          Gaussian blur sigma, 0..50 pixels (grey mode)\n"
-    "  --gradient G      illumination gradient across the width, -1..1 (grey mode)\n"
-    "  --clutter N       0..1000 white bars and rectangles behind the target's card\n"
-    "  --white L --black L --background L   grey levels 0..255 (grey mode)\n"
+    "  --pose RX,RY,RZ,TX,TY,TZ   the initial pose (degrees " + rangeText("virtual.pose.rx_deg") + ", mm, TZ > 0)\n" +
+    "  --noise S         Gaussian noise sigma, " + rangeText("virtual.noise_sigma") + " grey levels (grey mode)\n" +
+    "  --blur S          Gaussian blur sigma, " + rangeText("virtual.blur_sigma_px") + " pixels (grey mode)\n" +
+    "  --gradient G      illumination gradient across the width, " + rangeText("virtual.illumination_gradient") +
+    " (grey mode)\n" +
+    "  --clutter N       " + rangeText("virtual.clutter") + " white bars and rectangles behind the target's card\n" +
+    "  --white L --black L --background L   grey levels " + rangeText("virtual.white_level") + " (grey mode)\n"
     "  --seed N          clutter and noise seed\n"
     "  --pattern         the calibration pattern instead of the target alone\n"
     "  --name NAME       with --frames 1: write NAME.png instead of frame_00000.png\n"

@@ -5,6 +5,7 @@
 
 #include "cli/command.h"
 #include "cli/enum_options.h"
+#include "cli/option_ranges.h"
 #include "cli/image_inputs.h"
 #include "core/common/pose_csv.h"
 #include "core/pipeline/stage_chain.h"
@@ -24,7 +25,9 @@ ThresholdOptions chosenOptions(const Args& args, const Settings& settings) {
       throw UsageError("--value applies to --method manual only");
     o.method = ThresholdMethod::Manual;
     o.manual_value = args.integer("value", o.manual_value);
-    if (o.manual_value < 0 || o.manual_value > 255) throw UsageError("--value must be 0..255");
+    const SettingKey* range = findSettingKey("pipeline.threshold.value");
+    if (range && (o.manual_value < range->lo || o.manual_value > range->hi))
+      throw UsageError("--value must be " + rangeText(range->path));
   }
   if (o.method == ThresholdMethod::None)
     throw InputError("the settings' threshold method \"none\" names no threshold; choose one with --method");
@@ -85,7 +88,8 @@ const CommandRegistration kRegistration{{
     "IMAGES are image files, folders (their images in natural order) or text files listing paths.\n"
     "  --method M   the threshold method (default: the settings' threshold.method):\n" +
     choicesHelp<ThresholdMethod>(namesAThreshold) +
-    "  --value N    the manual threshold, 0..255; selects manual when --method is not given\n"
+    "  --value N    the manual threshold, " + rangeText("pipeline.threshold.value") +
+    "; selects manual when --method is not given\n"
     "  --format F   text (default): \"IMAGE: t\", or the error's name (and what it means);\n"
     "               csv: image,status,threshold with status ok or the error's name and\n"
     "               the threshold empty unless ok\n"
