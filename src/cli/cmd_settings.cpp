@@ -20,8 +20,8 @@ std::string cell(std::string_view text) {
   return out;
 }
 
-// One table per option enum, headed by the settings keys that take it: the block of
-// docs/user-manual.md between its "methods" markers.
+// One table per option enum, headed by the settings keys that take it: a generated
+// block of docs/user-manual.md (tools/regenerate-docs.sh).
 std::string methodsMarkdown() {
   std::vector<std::vector<const SettingKey*>> groups;
   for (const SettingKey& k : settingKeys()) {
