@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cli/command.h"
+#include "cli/enum_options.h"
 #include "cli/image_inputs.h"
 #include "core/common/pose_csv.h"
 #include "core/ellipse/detect.h"
@@ -72,11 +73,7 @@ int run(const Args& args) {
   if (args.positionals().empty()) throw UsageError("no images given");
   Settings settings = loadConfig(args);
   settings.pipeline.level = ApplicationLevel::Ellipse;
-  if (const auto name = args.value("method")) {
-    const auto method = parseEnum<EllipseMethod>(*name);
-    if (!method) throw UsageError("--method: \"" + *name + "\" is not one of " + enumChoices<EllipseMethod>());
-    settings.pipeline.ellipse.method = *method;
-  }
+  settings.pipeline.ellipse.method = enumOption(args, "method", settings.pipeline.ellipse.method);
   if (settings.pipeline.threshold.method == ThresholdMethod::None)
     throw InputError("the settings' threshold method \"none\" names no threshold");
   std::optional<std::filesystem::path> overlayDir;
@@ -146,7 +143,8 @@ const CommandRegistration kRegistration{{
     "target's two spots; without one, the best ellipse (lowest fit error, or highest\n"
     "Bennett score) unless ellipse.require_target_spots. IMAGES are image files,\n"
     "folders (their images in natural order) or text files listing paths.\n"
-    "  --method M    bennett or direct-fit (default: the settings' ellipse method)\n"
+    "  --method M    the ellipse detection method (default: the settings' ellipse.method):\n" +
+    choicesHelp<EllipseMethod>() +
     "  --format F    csv (default): frame,status,cx,cy,a,b,angle_deg,fit_error,method\n"
     "                with status ok, AmbiguousTarget (one row per target) or the\n"
     "                error's name and the ellipse columns empty; text: one line each\n"

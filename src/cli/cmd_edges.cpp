@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cli/command.h"
+#include "cli/enum_options.h"
 #include "cli/image_inputs.h"
 #include "core/common/pose_csv.h"
 #include "core/pipeline/stage_chain.h"
@@ -16,15 +17,6 @@
 
 namespace imagepro::cli {
 namespace {
-
-template <class E>
-E chosenEnum(const Args& args, const std::string& key, E fallback) {
-  const auto name = args.value(key);
-  if (!name) return fallback;
-  const auto value = parseEnum<E>(*name);
-  if (!value) throw UsageError("--" + key + ": \"" + *name + "\" is not one of " + enumChoices<E>());
-  return *value;
-}
 
 // Each path a distinct colour on black: hues a golden-ratio step apart, so paths
 // next to each other in the list (often next to each other in the image) differ.
@@ -61,8 +53,8 @@ int run(const Args& args) {
   args.rejectUnknown({"out", "method", "connectivity"});
   if (args.positionals().empty()) throw UsageError("no images given");
   Settings settings = loadConfig(args);
-  settings.pipeline.edge_method = chosenEnum(args, "method", settings.pipeline.edge_method);
-  settings.pipeline.connectivity = chosenEnum(args, "connectivity", settings.pipeline.connectivity);
+  settings.pipeline.edge_method = enumOption(args, "method", settings.pipeline.edge_method);
+  settings.pipeline.connectivity = enumOption(args, "connectivity", settings.pipeline.connectivity);
   settings.pipeline.level = ApplicationLevel::Connectivity;
   if (settings.pipeline.threshold.method == ThresholdMethod::None)
     throw InputError("the settings' threshold method \"none\" names no threshold");
@@ -146,8 +138,10 @@ const CommandRegistration kRegistration{{
     "                    on black) into DIR, created if missing; <name> is the image's file\n"
     "                    name without extension, with _2, _3 ... added when an earlier image\n"
     "                    of the run had the same name (e.g. from another folder).\n"
-    "  --method M        " + enumChoices<EdgeMethod>() + " (default: the settings' edge method)\n" +
-    "  --connectivity C  " + enumChoices<ConnectivityMethod>() + " (default: the settings' connectivity method)\n" +
+    "  --method M        the edge detection method (default: the settings' edge_method):\n" +
+    choicesHelp<EdgeMethod>() +
+    "  --connectivity C  the connectivity analysis (default: the settings' connectivity):\n" +
+    choicesHelp<ConnectivityMethod>() +
     "An image that cannot be read (missing, corrupt, a folder or list without images)\n"
     "or whose PNGs cannot be written also gets one line on stderr naming it and the\n"
     "reason (status FileNotWritable for a failed write); the others are still processed\n"

@@ -7,6 +7,7 @@
 
 
 #include "cli/command.h"
+#include "cli/enum_options.h"
 #include "cli/option_ranges.h"
 #include "cli/render_output.h"
 #include "cli/render_real.h"
@@ -17,15 +18,6 @@
 
 namespace imagepro::cli {
 namespace {
-
-template <class E>
-E enumOption(const Args& args, const std::string& key, E fallback) {
-  const auto name = args.value(key);
-  if (!name) return fallback;
-  const auto value = parseEnum<E>(*name);
-  if (!value) throw UsageError("--" + key + ": \"" + *name + "\" is not one of " + enumChoices<E>());
-  return *value;
-}
 
 double nonNegative(const Args& args, const std::string& key, double fallback) {
   const double v = args.number(key, fallback);
@@ -166,16 +158,19 @@ const CommandRegistration kRegistration{{
     "Ty_mm,Tz_mm,in_view; frame is the PNG file name, the pose is exact, in_view is 1 when\n"
     "the whole disk faces the camera inside the image, else 0). Options override the\n"
     "settings' \"virtual\" section, within the ranges the settings file allows:\n"
-    "  --mode M          binary (0/255, the thesis's) or grey (anti-aliased)\n"
-    "  --motion K        static, sinusoid, saw-tooth or pendulum\n"
-    "  --axis A          tx, ty, tz, rx, ry or rz: the parameter the motion moves\n"
+    "  --mode M          how the frames are drawn:\n" +
+    choicesHelp<RenderMode>() +
+    "  --motion K        how the target moves:\n" +
+    choicesHelp<MotionKind>() +
+    "  --axis A          the parameter the motion moves: " + enumChoices<PoseAxis>() + "\n"
     "  --amplitude A     mm or degrees;  --period S  seconds;  --rate HZ  frames per second\n"
-    "  --pose RX,RY,RZ,TX,TY,TZ   the initial pose (degrees -360..360, mm, TZ > 0)\n"
-    "  --noise S         Gaussian noise sigma, 0..255 grey levels (grey mode)\n"
-    "  --blur S          Gaussian blur sigma, 0..50 pixels (grey mode)\n"
-    "  --gradient G      illumination gradient across the width, -1..1 (grey mode)\n"
-    "  --clutter N       0..1000 white bars and rectangles behind the target's card\n"
-    "  --white L --black L --background L   grey levels 0..255 (grey mode)\n"
+    "  --pose RX,RY,RZ,TX,TY,TZ   the initial pose (degrees " + rangeText("virtual.pose.rx_deg") + ", mm, TZ > 0)\n" +
+    "  --noise S         Gaussian noise sigma, " + rangeText("virtual.noise_sigma") + " grey levels (grey mode)\n" +
+    "  --blur S          Gaussian blur sigma, " + rangeText("virtual.blur_sigma_px") + " pixels (grey mode)\n" +
+    "  --gradient G      illumination gradient across the width, " + rangeText("virtual.illumination_gradient") +
+    " (grey mode)\n" +
+    "  --clutter N       " + rangeText("virtual.clutter") + " white bars and rectangles behind the target's card\n" +
+    "  --white L --black L --background L   grey levels " + rangeText("virtual.white_level") + " (grey mode)\n"
     "  --seed N          clutter and noise seed\n"
     "  --pattern         the calibration pattern instead of the target alone\n"
     "  --name NAME       with --frames 1: write NAME.png instead of frame_00000.png\n"

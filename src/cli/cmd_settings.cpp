@@ -1,14 +1,60 @@
 // imagepro-cli settings: prints the effective settings JSON (the defaults, or
-// --config FILE checked and completed with defaults), or writes it with --out.
+// --config FILE checked and completed with defaults), or writes it with --out; with
+// --methods-markdown, the user manual's tables of the methods and options instead.
+#include <algorithm>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "cli/command.h"
 
 namespace imagepro::cli {
 namespace {
 
+// A table cell: its first letter a capital (the descriptions continue a name in the
+// GUI's tooltips), '|' escaped.
+std::string cell(std::string_view text) {
+  std::string out;
+  for (const char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  if (!out.empty() && out[0] >= 'a' && out[0] <= 'z') out[0] = static_cast<char>(out[0] - 'a' + 'A');
+  return out;
+}
+
+// One table per option enum, headed by the settings keys that take it: a generated
+// block of docs/user-manual.md (tools/regenerate-docs.sh).
+std::string methodsMarkdown() {
+  std::vector<std::vector<const SettingKey*>> groups;
+  for (const SettingKey& k : settingKeys()) {
+    if (k.type != SettingKey::Type::Choice) continue;
+    bool placed = false;
+    for (auto& g : groups)
+      if (!placed && g.front()->choice == k.choice) {
+        g.push_back(&k);
+        placed = true;
+      }
+    if (!placed) groups.push_back({&k});
+  }
+  // The control panel's lists first, in its order, then the Settings dialog's.
+  std::stable_partition(groups.begin(), groups.end(),
+                        [](const auto& g) { return g.front()->path.rfind("pipeline.", 0) == 0; });
+  std::string md;
+  for (const auto& g : groups) {
+    std::string keys;
+    for (const SettingKey* k : g) keys += (keys.empty() ? "`" : ", `") + k->path + "`";
+    md += (md.empty() ? "" : "\n") + keys + "\n\n| name | key | what it is |\n| --- | --- | --- |\n";
+    for (const auto& c : g.front()->choices)
+      md += "| " + cell(c.label) + " | `" + std::string(c.key) + "` | " + cell(c.description) + " |\n";
+  }
+  return md;
+}
+
 int run(const Args& args) {
-  args.rejectUnknown({"out"});
+  args.rejectUnknown({"out", "methods-markdown"});
+  if (args.has("methods-markdown")) {
+    if (args.has("out") || args.has("config")) throw UsageError("--methods-markdown takes no other option");
+    std::fputs(methodsMarkdown().c_str(), stdout);
+    return 0;
+  }
   const Settings settings = loadConfig(args);
   const std::string text = settingsToJson(settings);
   if (const auto out = args.value("out")) {
@@ -24,11 +70,15 @@ int run(const Args& args) {
 const CommandRegistration kRegistration{{
     "settings",
     "print or write the settings JSON (defaults, or --config checked and completed)",
-    "usage: imagepro-cli settings [--config FILE] [--out FILE]\n\n"
+    "usage: imagepro-cli settings [--config FILE] [--out FILE]\n"
+    "       imagepro-cli settings --methods-markdown\n\n"
     "Prints the effective settings: the defaults, or FILE with every missing key\n"
     "filled in. A malformed FILE is reported with the key at fault.\n"
-    "  --out FILE   write to FILE (atomically) instead of printing",
-    {},
+    "  --out FILE          write to FILE (atomically) instead of printing\n"
+    "  --methods-markdown  print instead the user manual's tables of every method and\n"
+    "                      option list: for each value its name, its key in the settings\n"
+    "                      file and what it is (docs/user-manual.md holds this output)",
+    {"methods-markdown"},
     run,
 }};
 

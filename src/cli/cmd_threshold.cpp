@@ -4,6 +4,8 @@
 #include <cstdio>
 
 #include "cli/command.h"
+#include "cli/enum_options.h"
+#include "cli/option_ranges.h"
 #include "cli/image_inputs.h"
 #include "core/common/pose_csv.h"
 #include "core/pipeline/stage_chain.h"
@@ -12,20 +14,20 @@
 namespace imagepro::cli {
 namespace {
 
+// "none" (the re-thresholding's by-pass) gives no threshold to print.
+bool namesAThreshold(ThresholdMethod m) { return m != ThresholdMethod::None; }
+
 ThresholdOptions chosenOptions(const Args& args, const Settings& settings) {
   ThresholdOptions o = settings.pipeline.threshold;
-  if (const auto name = args.value("method")) {
-    const auto method = parseEnum<ThresholdMethod>(*name);
-    if (!method || *method == ThresholdMethod::None)
-      throw UsageError("--method: \"" + *name + "\" is not one of manual, at-orig, at-mod");
-    o.method = *method;
-  }
+  if (args.has("method")) o.method = enumOption(args, "method", o.method, namesAThreshold);
   if (args.has("value")) {
     if (args.has("method") && o.method != ThresholdMethod::Manual)
       throw UsageError("--value applies to --method manual only");
     o.method = ThresholdMethod::Manual;
     o.manual_value = args.integer("value", o.manual_value);
-    if (o.manual_value < 0 || o.manual_value > 255) throw UsageError("--value must be 0..255");
+    const SettingKey* range = findSettingKey("pipeline.threshold.value");
+    if (range && (o.manual_value < range->lo || o.manual_value > range->hi))
+      throw UsageError("--value must be " + rangeText(range->path));
   }
   if (o.method == ThresholdMethod::None)
     throw InputError("the settings' threshold method \"none\" names no threshold; choose one with --method");
@@ -79,14 +81,15 @@ int run(const Args& args) {
 
 const CommandRegistration kRegistration{{
     "threshold",
-    "print the threshold of each image (manual, at-orig or at-mod)",
+    "print the threshold of each image by the chosen method (thesis 2.3)",
     "usage: imagepro-cli threshold [--config FILE] [--method M] [--value N] [--format F] IMAGES...\n\n"
     "Prints the threshold t of each image (thesis 2.3); binarization makes the pixels\n"
-    "above t white (eq. 2.1). at-orig and at-mod are Kittler and Illingworth's minimum\n"
-    "error threshold in its original and incremental forms: the same t, different speed.\n"
+    "above t white (eq. 2.1). at-orig and at-mod give the same t at different speed.\n"
     "IMAGES are image files, folders (their images in natural order) or text files listing paths.\n"
-    "  --method M   manual, at-orig or at-mod (default: the settings' threshold method)\n"
-    "  --value N    the manual threshold, 0..255; selects manual when --method is not given\n"
+    "  --method M   the threshold method (default: the settings' threshold.method):\n" +
+    choicesHelp<ThresholdMethod>(namesAThreshold) +
+    "  --value N    the manual threshold, " + rangeText("pipeline.threshold.value") +
+    "; selects manual when --method is not given\n"
     "  --format F   text (default): \"IMAGE: t\", or the error's name (and what it means);\n"
     "               csv: image,status,threshold with status ok or the error's name and\n"
     "               the threshold empty unless ok\n"

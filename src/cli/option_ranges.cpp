@@ -1,5 +1,7 @@
 #include "cli/option_ranges.h"
 
+#include <cstdio>
+
 #include "cli/command.h"
 
 namespace imagepro::cli {
@@ -16,6 +18,17 @@ void checkOptionRanges(const Settings& settings, const std::vector<OptionKey>& o
   for (const auto& [prefix, option] : options)
     if (key.rfind(prefix, 0) == 0) throw UsageError(option + ": " + problem + " (as " + key + " in a settings file)");
   throw UsageError("the options give an invalid setting: " + error);
+}
+
+std::string rangeText(std::string_view key) {
+  const SettingKey* k = findSettingKey(key);
+  if (!k) return "?";
+  const auto text = [](double v) {
+    char out[32];
+    std::snprintf(out, sizeof out, "%g", v);
+    return std::string(out);
+  };
+  return text(k->lo) + ".." + text(k->hi);
 }
 
 }  // namespace imagepro::cli

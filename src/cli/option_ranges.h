@@ -4,6 +4,7 @@
 // loader, so its ranges (written down once, in settings.cpp) apply, and NaN or
 // infinity, which JSON cannot hold, is refused.
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -17,5 +18,8 @@ using OptionKey = std::pair<std::string, std::string>;
 // Throws UsageError naming the option (and the settings key) when `settings` would be
 // refused by the settings loader.
 void checkOptionRanges(const Settings& settings, const std::vector<OptionKey>& options);
+
+// "0..255": the settings table's range of `key`, for --help and messages.
+std::string rangeText(std::string_view key);
 
 }  // namespace imagepro::cli

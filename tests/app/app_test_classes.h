@@ -25,6 +25,7 @@ class PanelTest : public QObject {
   void displayPanels();
   void settingsDialog();
   void listsComeFromTheEnumTables();
+  void rangesComeFromTheSettingsTable();
  private:
   std::unique_ptr<MainWindow> window_;
 };

@@ -10,7 +10,7 @@
 #include <functional>
 
 #include "app/main_window/main_window.h"
-#include "core/settings/enum_names.h"
+#include "app/settings/enum_text.h"
 
 namespace imagepro::app::test {
 
@@ -39,28 +39,23 @@ bool waitForFrame(MainWindow& window, const std::function<bool(const FrameResult
 // Until the worker runs with settings satisfying `pred`.
 bool waitForApplied(MainWindow& window, const std::function<bool(const Settings&)>& pred, int ms = 5000);
 
-template <class E>
-QString entryName(E value) {
-  const std::string_view n = enumName(value);
-  return QString::fromUtf8(n.data(), static_cast<qsizetype>(n.size()));
-}
-
-// Selects `value` in a combo box built from the enum's table; false if absent.
+// Selects `value` in a combo box built from the enum's table, where it shows its
+// display name; false if absent.
 template <class E>
 bool choose(QComboBox* box, E value) {
   if (!box) return false;
   const int i = box->findData(static_cast<int>(value));
-  if (i < 0 || box->itemText(i) != entryName(value)) return false;
+  if (i < 0 || box->itemText(i) != labelOf(value)) return false;
   box->setCurrentIndex(i);
   return true;
 }
 
-// Clicks the radio button named after `value` inside the widget `group`.
+// Clicks the radio button that shows `value`'s display name inside the widget `group`.
 template <class E>
 bool chooseRadio(QWidget* group, E value) {
   if (!group) return false;
   for (QAbstractButton* b : group->findChildren<QAbstractButton*>()) {
-    if (b->text() == entryName(value)) {
+    if (b->text() == labelOf(value)) {
       b->click();
       return true;
     }

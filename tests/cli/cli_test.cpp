@@ -48,6 +48,24 @@ TEST(Cli, EveryCommandHasHelp) {
   }
 }
 
+TEST(Cli, MethodListsComeFromTheEnumTables) {
+  // Each value by its key, then its display name and description from enum_names.cpp.
+  const CliRun edges = cli("edges --help");
+  EXPECT_NE(edges.out.find("laplace         Laplace: a white pixel"), std::string::npos) << edges.out;
+  EXPECT_NE(edges.out.find("cn1  CN1: "), std::string::npos) << edges.out;
+  EXPECT_NE(cli("detect --help").out.find("direct-fit  Direct fit: "), std::string::npos);
+  const CliRun threshold = cli("threshold --help");
+  EXPECT_NE(threshold.out.find("at-mod   AT-Mod: "), std::string::npos) << threshold.out;
+  EXPECT_EQ(threshold.out.find("None: "), std::string::npos);  // no threshold to print
+  EXPECT_NE(cli("render --help").out.find("saw-tooth  Saw-tooth: "), std::string::npos);
+  const CliRun md = cli("settings --methods-markdown");
+  EXPECT_EQ(md.exit_code, 0);
+  EXPECT_NE(md.out.find("`pipeline.threshold.method`, `pipeline.rethreshold.method`\n"), std::string::npos) << md.out;
+  EXPECT_NE(md.out.find("| AT-Mod | `at-mod` | The same minimum error criterion"), std::string::npos) << md.out;
+  EXPECT_NE(md.out.find("| 8 points ORG | `8-points-org` | "), std::string::npos);
+  EXPECT_EQ(cli("settings --methods-markdown --out x.json").exit_code, 2);
+}
+
 TEST(Cli, UsageErrorsAreOneLineAndExitTwo) {
   CliRun r = cli("frobnicate");
   EXPECT_EQ(r.exit_code, 2);

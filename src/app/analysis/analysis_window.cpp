@@ -25,6 +25,7 @@
 #include "app/analysis/analysis_live.h"
 #include "app/plots/analysis_plots.h"
 #include "app/main_window/main_window.h"
+#include "app/settings/settings_binder.h"
 
 namespace imagepro::app {
 
@@ -188,7 +189,13 @@ QWidget* AnalysisWindow::buildPendulumParams() {
   pendulum_frames_->setToolTip(tr("Virtual scene: frames rendered at the settings' frame rate"));
   pendulum_noise_ = doubleSpin(0.0, 50.0, defaults.noise_sigma, 1, tr(" grey levels"));
   pendulum_noise_->setToolTip(tr("Virtual scene: image noise (standard deviation)"));
-  rate_ = doubleSpin(0.01, 10000.0, main_.settings().virtual_scene.frame_rate_hz, 2, tr(" Hz"));
+  // The settings' frame rate, so its range is the settings table's.
+  const Settings& settings = main_.settings();
+  rate_ = new QDoubleSpinBox;
+  if (const SettingKey* key = settingKeyOf(settings, &settings.virtual_scene.frame_rate_hz))
+    setTableRange(rate_, *key, 2);
+  rate_->setValue(settings.virtual_scene.frame_rate_hz);
+  rate_->setSuffix(tr(" Hz"));
   rate_->setToolTip(tr("File or live input: the frame rate that times frames without timestamps (image files, a "
                        "CSV without timestamp_s)"));
   amplitude_correction_ = new QCheckBox(tr("Amplitude correction"));

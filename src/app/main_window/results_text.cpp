@@ -2,13 +2,11 @@
 
 #include <QStringList>
 
-#include "core/settings/enum_names.h"
+#include "app/settings/enum_text.h"
 
 namespace imagepro::app {
 
 namespace {
-
-QString fromView(std::string_view s) { return QString::fromUtf8(s.data(), static_cast<qsizetype>(s.size())); }
 
 // Two lines: rotations, then translations, in fixed columns.
 QString poseLines(const char* label, const Pose& p) {
@@ -37,7 +35,7 @@ QString formatResults(const DisplayPacket& packet) {
   lines << QStringLiteral("Status    %1").arg(statusInWords(r.status));
   lines << QStringLiteral("Frame     %1").arg(r.index);
   if (!r.name.empty()) lines << QStringLiteral("File      %1").arg(QString::fromStdString(r.name));
-  lines << QStringLiteral("Reached   %1").arg(fromView(enumName(r.reached)));
+  lines << QStringLiteral("Reached   %1").arg(labelOf(r.reached));
   const double total = r.times.total();
   lines << QStringLiteral("Rate      %1 Hz   CPU %2 %").arg(packet.hz, 0, 'f', 1).arg(packet.cpu_percent, 0, 'f', 0);
   lines << QStringLiteral("Pipeline  %1 us (%2 Hz possible)").arg(total, 0, 'f', 0).arg(total > 0.0 ? 1e6 / total : 0.0, 0, 'f', 0);

@@ -22,7 +22,7 @@ QWidget* thresholdControls(SettingsBinder& binder, Field field, bool with_none, 
   auto* method = binder.combo<ThresholdMethod>([field](Settings& s) -> auto& { return field(s).method; },
                                                [with_none](ThresholdMethod m) { return with_none || m != ThresholdMethod::None; });
   method->setObjectName(QString::fromStdString(p + "Method"));
-  auto* value = binder.intSpin([field](Settings& s) -> auto& { return field(s).manual_value; }, 0, 255);
+  auto* value = binder.intSpin([field](Settings& s) -> auto& { return field(s).manual_value; });
   value->setObjectName(QString::fromStdString(p + "Value"));
   value->setToolTip(QObject::tr("Val: pixels brighter than this are white (thesis eq. 2.1)"));
   form->addRow(QObject::tr("Method"), method);
@@ -53,11 +53,11 @@ QWidget* thresholdPanel(SettingsBinder& binder) {
   auto b = [](Settings& s) -> BinarizationOptions& { return s.pipeline.binarization; };
   form->addRow(QObject::tr("Binarization"),
                named(binder.combo<Binarization>([b](Settings& s) -> auto& { return b(s).mode; }), "binarizationMode"));
-  auto* window = named(binder.intSpin([b](Settings& s) -> auto& { return b(s).window_px; }, 0, 2047, QStringLiteral(" px")),
+  auto* window = named(binder.intSpin([b](Settings& s) -> auto& { return b(s).window_px; }, QStringLiteral(" px")),
                        "localWindow", QObject::tr("Side of the local window; 0: a sixteenth of the image width"));
-  auto* offset = named(binder.doubleSpin([b](Settings& s) -> auto& { return b(s).offset; }, 0.0, 1.0, 2),
+  auto* offset = named(binder.doubleSpin([b](Settings& s) -> auto& { return b(s).offset; }, 2),
                        "localOffset", QObject::tr("Black: darker than the window's mean by more than this fraction of it ..."));
-  auto* contrast = named(binder.intSpin([b](Settings& s) -> auto& { return b(s).min_contrast; }, 0, 255),
+  auto* contrast = named(binder.intSpin([b](Settings& s) -> auto& { return b(s).min_contrast; }),
                          "localMinContrast", QObject::tr("... and by more than this many grey levels"));
   form->addRow(QObject::tr("Window"), window);
   form->addRow(QObject::tr("Offset"), offset);
@@ -92,35 +92,35 @@ QWidget* ellipsePanel(SettingsBinder& binder) {
   auto e = [](Settings& s) -> EllipseOptions& { return s.pipeline.ellipse; };
   form->addRow(QObject::tr("Method"), named(binder.combo<EllipseMethod>([e](Settings& s) -> auto& { return e(s).method; }), "ellipseMethod"));
   auto* accept = named(binder.combo<FitAcceptRule>([e](Settings& s) -> auto& { return e(s).accept_rule; }), "ellipseAcceptRule");
-  auto* max_rel = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).max_relative_error; }, 0.0, 10.0, 4),
+  auto* max_rel = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).max_relative_error; }, 4),
                         "ellipseMaxRelativeError", QObject::tr("Largest accepted relative fit error E_rel (thesis eq. 2.42)"));
-  auto* max_sampson = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).max_sampson_distance_px; }, 0.0, 100.0, 3, QStringLiteral(" px")),
+  auto* max_sampson = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).max_sampson_distance_px; }, 3, QStringLiteral(" px")),
                             "ellipseMaxSampson", QObject::tr("Largest accepted mean Sampson distance"));
-  auto* min_path = named(binder.intSpin([e](Settings& s) -> auto& { return e(s).min_path_pixels; }, 6, 1000000, QStringLiteral(" px")),
+  auto* min_path = named(binder.intSpin([e](Settings& s) -> auto& { return e(s).min_path_pixels; }, QStringLiteral(" px")),
                          "ellipseMinPath", QObject::tr("Shorter connected paths are not considered"));
-  auto* min_score = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_min_score; }, 0.0, 1e9, 0), "bennettMinScore");
-  auto* max_score = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_max_score; }, 0.0, 1e9, 0), "bennettMaxScore");
-  auto* min_quality = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_min_quality; }, 0.0, 1e9, 0), "bennettMinQuality");
-  auto* max_quality = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_max_quality; }, 0.0, 1e9, 0), "bennettMaxQuality");
-  auto* min_peak = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_min_peak_fraction; }, 0.0, 1.0, 4),
+  auto* min_score = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_min_score; }, 0), "bennettMinScore");
+  auto* max_score = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_max_score; }, 0), "bennettMaxScore");
+  auto* min_quality = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_min_quality; }, 0), "bennettMinQuality");
+  auto* max_quality = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_max_quality; }, 0), "bennettMaxQuality");
+  auto* min_peak = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_min_peak_fraction; }, 4),
                          "bennettMinPeakFraction",
                          QObject::tr("Least share of the path's point pairs that must vote for the accumulator's peak "
                                      "(thesis 2.6.1, rule 3; 1/16 measured on the synthetic library)"));
-  auto* max_points = named(binder.intSpin([e](Settings& s) -> auto& { return e(s).bennett_max_points; }, 0, 100000, QStringLiteral(" px")),
+  auto* max_points = named(binder.intSpin([e](Settings& s) -> auto& { return e(s).bennett_max_points; }, QStringLiteral(" px")),
                            "bennettMaxPoints",
                            QObject::tr("Longer paths vote with a random sample of this many pixels, all pairs of them "
                                        "(0: never sampled; thesis 2.6.1)"));
   for (auto* w : {min_score, max_score}) w->setToolTip(QObject::tr("Bennett accumulation score range (thesis 2.6.1, rule 3)"));
   for (auto* w : {min_quality, max_quality}) w->setToolTip(QObject::tr("Bennett quality factor range (thesis 2.6.1, rule 2)"));
-  auto* trace_inlier = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).trace_inlier_px; }, 0.0, 100.0, 2, QStringLiteral(" px")),
+  auto* trace_inlier = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).trace_inlier_px; }, 2, QStringLiteral(" px")),
                              "ellipseTraceInlier",
                              QObject::tr("The trace: a path pixel within this distance of the fitted ellipse traces the "
                                          "arc (about 3 px of perimeter) its foot lies on"));
-  auto* min_traced = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).min_traced_fraction; }, 0.0, 1.0, 3),
+  auto* min_traced = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).min_traced_fraction; }, 3),
                            "ellipseMinTraced",
                            QObject::tr("Direct fit: share of the ellipse's perimeter inside the image that its path must "
                                        "trace (a rectangle fails it at its blunt ends)"));
-  auto* min_arc = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).min_arc_fraction; }, 0.0, 1.0, 3),
+  auto* min_arc = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).min_arc_fraction; }, 3),
                         "ellipseMinArc",
                         QObject::tr("Direct fit: share of the whole perimeter the path must trace, so that an ellipse "
                                     "cut by the image border (thesis fig. 2.27) passes only with enough of it inside"));
@@ -129,15 +129,15 @@ QWidget* ellipsePanel(SettingsBinder& binder) {
                        QObject::tr("Direct fit: when no ellipse holds the target's spots, a path that may hold them but "
                                    "fails the fit (an occluder's edges in its contour, thesis fig. 2.28) is refitted on "
                                    "the inliers of the six-point fit whose ellipse it traces most"));
-  auto* robust_iterations = named(binder.intSpin([e](Settings& s) -> auto& { return e(s).robust_iterations; }, 1, 100000),
+  auto* robust_iterations = named(binder.intSpin([e](Settings& s) -> auto& { return e(s).robust_iterations; }),
                                   "ellipseRobustIterations",
                                   QObject::tr("Consensus refit: at most this many six-point fits (fewer once 99 % sure "
                                               "of one clean sample)"));
-  auto* robust_traced = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).robust_min_traced_fraction; }, 0.0, 1.0, 3),
+  auto* robust_traced = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).robust_min_traced_fraction; }, 3),
                               "ellipseRobustMinTraced",
                               QObject::tr("Consensus refit: share of the observable ellipse its inliers must trace; it "
                                           "must also pass the accept rule on them"));
-  auto* spot_tolerance = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).target_spot_tolerance; }, 0.0, 1.0, 3),
+  auto* spot_tolerance = named(binder.doubleSpin([e](Settings& s) -> auto& { return e(s).target_spot_tolerance; }, 3),
                                "ellipseSpotTolerance",
                                QObject::tr("Target selection: how far, in disk radii, the centre spot may lie from the "
                                            "ellipse's centre and the offset spot from rf/R beside it"));
@@ -194,14 +194,14 @@ QWidget* reconstructionPanel(SettingsBinder& binder) {
                      "centreSpotNormal", QObject::tr("Weigh the centre spot's polar line into the target plane's normal (most gain seen head-on)")));
   form->addRow(named(binder.check(QObject::tr("Refine the pose"), [r](Settings& s) -> auto& { return r(s).refine_pose; }),
                      "refinePose", QObject::tr("A few Levenberg-Marquardt steps of the pose against the rim's edge points and the two spots")));
-  form->addRow(QObject::tr("Crop margin"), named(binder.intSpin([r](Settings& s) -> auto& { return r(s).crop_margin_px; }, 0, 1000, QStringLiteral(" px")),
+  form->addRow(QObject::tr("Crop margin"), named(binder.intSpin([r](Settings& s) -> auto& { return r(s).crop_margin_px; }, QStringLiteral(" px")),
                                                  "cropMargin", QObject::tr("Pixels added around the detected target before re-thresholding")));
   // The self-check and the choice between the rim's two circles (docs/reconstruction.md).
-  form->addRow(QObject::tr("Max spot error"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).max_spot_error_px; }, 0.0, 1000.0, 2, QStringLiteral(" px")),
+  form->addRow(QObject::tr("Max spot error"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).max_spot_error_px; }, 2, QStringLiteral(" px")),
                                                     "maxSpotError", QObject::tr("PoseInconsistent when the pose puts a spot further than this from where it was found")));
-  form->addRow(QObject::tr("Max rim error"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).max_rim_error_px; }, 0.0, 1000.0, 2, QStringLiteral(" px")),
+  form->addRow(QObject::tr("Max rim error"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).max_rim_error_px; }, 2, QStringLiteral(" px")),
                                                    "maxRimError", QObject::tr("PoseInconsistent when the pose's rim lies further (RMS) than this from the contour points")));
-  form->addRow(QObject::tr("Ambiguity ratio"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).ambiguity_ratio; }, 1.0, 1000.0, 2),
+  form->addRow(QObject::tr("Ambiguity ratio"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).ambiguity_ratio; }, 2),
                                                      "ambiguityRatio", QObject::tr("AmbiguousPose unless one of the rim's two poses fits the spots this many times better")));
   binder.onAnyUpdate([&binder, exact] { exact->setEnabled(binder.model().pipeline.reconstruction.distortion_correction); });
   return box;

@@ -19,9 +19,8 @@ QWidget* trackingPanel(SettingsBinder& binder) {
   auto* strategy = named(new QComboBox, "trackingStrategy");
   for (const auto& entry : enumEntries(TrackingMode{})) {
     if (entry.value == TrackingMode::Off) continue;
-    strategy->addItem(QString::fromUtf8(entry.name.data(), static_cast<qsizetype>(entry.name.size())),
-                      static_cast<int>(entry.value));
-    strategy->setItemData(strategy->count() - 1, methodToolTip(entry.value), Qt::ToolTipRole);
+    strategy->addItem(fromView(entry.label), static_cast<int>(entry.value));
+    strategy->setItemData(strategy->count() - 1, entryToolTip(entry), Qt::ToolTipRole);
   }
   const auto write_mode = [&binder, on, strategy] {
     binder.model().pipeline.tracking.mode =
@@ -47,25 +46,25 @@ QWidget* trackingPanel(SettingsBinder& binder) {
   form->addRow(on);
   form->addRow(QObject::tr("Strategy"), strategy);
   form->addRow(QObject::tr("Data points"),
-               named(binder.intSpin([t](Settings& s) -> auto& { return t(s).data_points; }, 1, 100), "trackingDataPoints",
+               named(binder.intSpin([t](Settings& s) -> auto& { return t(s).data_points; }), "trackingDataPoints",
                      QObject::tr("The last n frames the polynomial is fitted to (thesis 3.3)")));
   form->addRow(QObject::tr("Degree"),
-               named(binder.intSpin([t](Settings& s) -> auto& { return t(s).degree; }, 0, 3), "trackingDegree",
+               named(binder.intSpin([t](Settings& s) -> auto& { return t(s).degree; }), "trackingDegree",
                      QObject::tr("Degree of the extrapolating polynomial (thesis 3.2)")));
   form->addRow(QObject::tr("min r"),
-               named(binder.doubleSpin([t](Settings& s) -> auto& { return t(s).min_r; }, -1.0, 1.0, 3), "trackingMinR",
+               named(binder.doubleSpin([t](Settings& s) -> auto& { return t(s).min_r; }, 3), "trackingMinR",
                      QObject::tr("Critical correlation coefficient: below it the degree and data points are reduced (thesis 3.3.1)")));
   form->addRow(QObject::tr("red [%]"),
-               named(binder.doubleSpin([t](Settings& s) -> auto& { return t(s).reduction_percent; }, 0.0, 100.0, 1), "trackingReduction",
+               named(binder.doubleSpin([t](Settings& s) -> auto& { return t(s).reduction_percent; }, 1), "trackingReduction",
                      QObject::tr("Slows the shrinking of the estimated region (thesis 3.3)")));
   form->addRow(QObject::tr("Enlarge"),
-               named(binder.doubleSpin([t](Settings& s) -> auto& { return t(s).enlarge_px; }, 0.0, 10000.0, 1, QStringLiteral(" px")),
+               named(binder.doubleSpin([t](Settings& s) -> auto& { return t(s).enlarge_px; }, 1, QStringLiteral(" px")),
                      "trackingEnlargePx", QObject::tr("Fixed pixels added to the region's width and height (thesis 3.3.3, 1)")));
   form->addRow(QObject::tr("Scale"),
-               named(binder.doubleSpin([t](Settings& s) -> auto& { return t(s).enlarge_scale; }, 0.0, 100.0, 3), "trackingEnlargeScale",
+               named(binder.doubleSpin([t](Settings& s) -> auto& { return t(s).enlarge_scale; }, 3), "trackingEnlargeScale",
                      QObject::tr("Fixed scale factor of the region (thesis 3.3.3, 2)")));
   form->addRow(QObject::tr("Speed scale"),
-               named(binder.doubleSpin([t](Settings& s) -> auto& { return t(s).enlarge_speed_scale; }, 0.0, 100.0, 4),
+               named(binder.doubleSpin([t](Settings& s) -> auto& { return t(s).enlarge_speed_scale; }, 4),
                      "trackingEnlargeSpeed",
                      QObject::tr("Scale per pixel/frame of the target centre's speed (thesis 3.3.3, 3)")));
   return box;

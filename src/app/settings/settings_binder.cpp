@@ -5,7 +5,59 @@
 #include <QRadioButton>
 #include <QVBoxLayout>
 
+#include <climits>
+#include <cmath>
+
+#include "core/common/contract.h"
+
 namespace imagepro::app {
+
+namespace {
+
+// `value` on the grid of `decimals` places, rounded towards the inside of the range
+// (up for its low end): a bound finer than the box shows (1e-9 for "above zero")
+// becomes the first value the box can show inside it.
+double onGrid(double value, int decimals, bool low_end) {
+  if (!std::isfinite(value)) return value;
+  const double scale = std::pow(10.0, decimals);
+  const double scaled = value * scale;
+  const double nearest = std::round(scaled);
+  // A bound already on the grid stays, whatever the last bit of its product says.
+  if (std::abs(scaled - nearest) <= 1e-9 * std::max(1.0, std::abs(scaled))) return nearest / scale;
+  return (low_end ? std::ceil(scaled) : std::floor(scaled)) / scale;
+}
+
+int toInt(double value) {
+  return value <= double(INT_MIN) ? INT_MIN : value >= double(INT_MAX) ? INT_MAX : static_cast<int>(value);
+}
+
+}  // namespace
+
+const SettingKey& SettingsBinder::bindKey(QWidget* widget, const void* field) {
+  const SettingKey* key = settingKeyOf(model_, field);
+  IMAGEPRO_EXPECTS(key != nullptr, "a bound widget edits a value of the settings table");
+  // Unbound in a release build: no range to take, the widget keeps Qt's and lacks the property.
+  static const SettingKey kUnbound{};
+  if (!key) return kUnbound;
+  widget->setProperty(kSettingKeyProperty, QString::fromStdString(key->path));
+  return *key;
+}
+
+void setTableRange(QSpinBox* box, const SettingKey& key) {
+  if (key.path.empty()) return;
+  box->setProperty(kSettingKeyProperty, QString::fromStdString(key.path));
+  box->setRange(toInt(key.lo), toInt(key.hi));
+}
+
+void setTableRange(QDoubleSpinBox* box, const SettingKey& key, int decimals) {
+  box->setDecimals(decimals);
+  double step = 1.0;
+  for (int i = 0; i < decimals - 1; ++i) step /= 10.0;
+  box->setSingleStep(step);
+  if (key.path.empty()) return;
+  box->setProperty(kSettingKeyProperty, QString::fromStdString(key.path));
+  box->setRange(onGrid(key.lo, decimals, true), onGrid(key.hi, decimals, false));
+}
 
 void SettingsBinder::refresh() {
   refreshing_ = true;
@@ -48,10 +100,11 @@ QWidget* SettingsBinder::radioBox(std::vector<std::pair<QString, QString>> items
   return box;
 }
 
-QLineEdit* SettingsBinder::numberEdit(double lo, double hi, std::function<double()> get,
+QLineEdit* SettingsBinder::numberEdit(const void* field, std::function<double()> get,
                                       std::function<void(double)> set) {
   auto* edit = new QLineEdit;
-  auto* validator = new QDoubleValidator(lo, hi, 17, edit);
+  const SettingKey& key = bindKey(edit, field);
+  auto* validator = key.path.empty() ? new QDoubleValidator(edit) : new QDoubleValidator(key.lo, key.hi, 17, edit);
   validator->setNotation(QDoubleValidator::ScientificNotation);
   validator->setLocale(QLocale::c());
   edit->setValidator(validator);
@@ -60,7 +113,7 @@ QLineEdit* SettingsBinder::numberEdit(double lo, double hi, std::function<double
     if (refreshing_) return;
     bool ok = false;
     const double v = QLocale::c().toDouble(edit->text(), &ok);
-    if (!ok || v == get()) return;
+    if (!ok || !std::isfinite(v) || v == get()) return;
     set(v);
     edited();
   });

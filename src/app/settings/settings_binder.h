@@ -1,8 +1,11 @@
 #pragma once
 // Binds control-panel widgets to fields of the one Settings struct. A widget edit
 // writes its field and emits changed(); refresh() writes every field back into its
-// widget (after Load or Restore defaults) without emitting. Lists are built from
-// the enum name tables, so no name or default is written down twice.
+// widget (after Load or Restore defaults) without emitting. Lists show the enum
+// tables' display names with their descriptions as tooltips (enum_names.h), and
+// number widgets take their range from the settings table (settings.cpp), so no
+// name, range or default is written down twice. Every bound widget carries its
+// settings key in the property kSettingKeyProperty.
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
@@ -10,17 +13,26 @@
 #include <QObject>
 #include <QSpinBox>
 
+#include <cmath>
 #include <functional>
 #include <vector>
 
-#include "app/panels/method_info.h"
-#include "core/settings/enum_names.h"
+#include "app/settings/enum_text.h"
 #include "core/settings/settings.h"
 
 class QButtonGroup;
 class QRadioButton;
 
 namespace imagepro::app {
+
+// The property of a bound widget that names its settings key ("pipeline.ellipse.trace_inlier_px").
+inline constexpr const char* kSettingKeyProperty = "settingKey";
+
+// The settings table's range of `key` on a spin box, which then carries the key. A
+// double spin box shows `decimals` places (its step is ten of the last place); a
+// range end finer than that is rounded inwards, so the box offers no invalid value.
+void setTableRange(QSpinBox* box, const SettingKey& key);
+void setTableRange(QDoubleSpinBox* box, const SettingKey& key, int decimals);
 
 class SettingsBinder : public QObject {
   Q_OBJECT
@@ -39,13 +51,14 @@ class SettingsBinder : public QObject {
   QWidget* radios(Field field);
   template <class Field>
   QCheckBox* check(const QString& text, Field field);
+  // Number widgets, their range the settings table's for the field's key (setTableRange).
   template <class Field>
-  QSpinBox* intSpin(Field field, int lo, int hi, const QString& suffix = {});
+  QSpinBox* intSpin(Field field, const QString& suffix = {});
   template <class Field>
-  QDoubleSpinBox* doubleSpin(Field field, double lo, double hi, int decimals, const QString& suffix = {});
+  QDoubleSpinBox* doubleSpin(Field field, int decimals, const QString& suffix = {});
   // Free text for numbers too small or too wide for a spin box (distortion coefficients).
   template <class Field>
-  QLineEdit* number(Field field, double lo, double hi);
+  QLineEdit* number(Field field);
 
   // Writes the whole model into the widgets, emitting nothing.
   void refresh();
@@ -57,10 +70,12 @@ class SettingsBinder : public QObject {
 
  private:
   void edited();
+  // The settings key of the model's value at `field`, recorded on `widget`.
+  const SettingKey& bindKey(QWidget* widget, const void* field);
   void addRefresher(std::function<void()> fn) { refreshers_.push_back(std::move(fn)); }
   QWidget* radioBox(std::vector<std::pair<QString, QString>> items, std::function<int()> get,
                     std::function<void(int)> set);
-  QLineEdit* numberEdit(double lo, double hi, std::function<double()> get, std::function<void(double)> set);
+  QLineEdit* numberEdit(const void* field, std::function<double()> get, std::function<void(double)> set);
 
   Settings& model_;
   std::vector<std::function<void()>> refreshers_;
@@ -73,11 +88,11 @@ class SettingsBinder : public QObject {
 template <class E, class Field>
 QComboBox* SettingsBinder::combo(Field field, std::function<bool(E)> keep) {
   auto* box = new QComboBox;
+  bindKey(box, &field(model_));
   for (const auto& entry : enumEntries(E{})) {
     if (keep && !keep(entry.value)) continue;
-    box->addItem(QString::fromUtf8(entry.name.data(), static_cast<qsizetype>(entry.name.size())),
-                 static_cast<int>(entry.value));
-    box->setItemData(box->count() - 1, methodToolTip(entry.value), Qt::ToolTipRole);
+    box->addItem(fromView(entry.label), static_cast<int>(entry.value));
+    box->setItemData(box->count() - 1, entryToolTip(entry), Qt::ToolTipRole);
   }
   addRefresher([this, box, field] {
     box->setCurrentIndex(box->findData(static_cast<int>(field(model_))));
@@ -95,11 +110,9 @@ QComboBox* SettingsBinder::combo(Field field, std::function<bool(E)> keep) {
 template <class E, class Field>
 QWidget* SettingsBinder::radios(Field field) {
   std::vector<std::pair<QString, QString>> items;
-  for (const auto& entry : enumEntries(E{}))
-    items.emplace_back(QString::fromUtf8(entry.name.data(), static_cast<qsizetype>(entry.name.size())),
-                       methodToolTip(entry.value));
+  for (const auto& entry : enumEntries(E{})) items.emplace_back(fromView(entry.label), entryToolTip(entry));
   const auto values = enumEntries(E{});
-  return radioBox(
+  QWidget* box = radioBox(
       std::move(items),
       [this, field, values] {
         for (std::size_t i = 0; i < values.size(); ++i)
@@ -107,11 +120,14 @@ QWidget* SettingsBinder::radios(Field field) {
         return -1;
       },
       [this, field, values](int i) { field(model_) = values[static_cast<std::size_t>(i)].value; });
+  bindKey(box, &field(model_));
+  return box;
 }
 
 template <class Field>
 QCheckBox* SettingsBinder::check(const QString& text, Field field) {
   auto* box = new QCheckBox(text);
+  bindKey(box, &field(model_));
   addRefresher([this, box, field] { box->setChecked(field(model_)); });
   connect(box, &QCheckBox::toggled, this, [this, field](bool on) {
     if (refreshing_) return;
@@ -122,9 +138,9 @@ QCheckBox* SettingsBinder::check(const QString& text, Field field) {
 }
 
 template <class Field>
-QSpinBox* SettingsBinder::intSpin(Field field, int lo, int hi, const QString& suffix) {
+QSpinBox* SettingsBinder::intSpin(Field field, const QString& suffix) {
   auto* box = new QSpinBox;
-  box->setRange(lo, hi);
+  setTableRange(box, bindKey(box, &field(model_)));
   box->setSuffix(suffix);
   box->setKeyboardTracking(false);  // one change per finished entry, not per digit
   addRefresher([this, box, field] { box->setValue(static_cast<int>(field(model_))); });
@@ -137,18 +153,14 @@ QSpinBox* SettingsBinder::intSpin(Field field, int lo, int hi, const QString& su
 }
 
 template <class Field>
-QDoubleSpinBox* SettingsBinder::doubleSpin(Field field, double lo, double hi, int decimals, const QString& suffix) {
+QDoubleSpinBox* SettingsBinder::doubleSpin(Field field, int decimals, const QString& suffix) {
   auto* box = new QDoubleSpinBox;
-  box->setDecimals(decimals);
-  box->setRange(lo, hi);
+  setTableRange(box, bindKey(box, &field(model_)), decimals);
   box->setSuffix(suffix);
   box->setKeyboardTracking(false);
-  double step = 1.0;
-  for (int i = 0; i < decimals - 1; ++i) step /= 10.0;
-  box->setSingleStep(step);
   addRefresher([this, box, field] { box->setValue(field(model_)); });
   connect(box, &QDoubleSpinBox::valueChanged, this, [this, field](double v) {
-    if (refreshing_) return;
+    if (refreshing_ || !std::isfinite(v)) return;
     field(model_) = v;
     edited();
   });
@@ -156,8 +168,8 @@ QDoubleSpinBox* SettingsBinder::doubleSpin(Field field, double lo, double hi, in
 }
 
 template <class Field>
-QLineEdit* SettingsBinder::number(Field field, double lo, double hi) {
-  return numberEdit(lo, hi, [this, field] { return static_cast<double>(field(model_)); },
+QLineEdit* SettingsBinder::number(Field field) {
+  return numberEdit(&field(model_), [this, field] { return static_cast<double>(field(model_)); },
                     [this, field](double v) { field(model_) = v; });
 }
 

@@ -2,17 +2,13 @@
 
 #include <QPushButton>
 
-#include <limits>
-
 #include "app/panels/panels.h"
 #include "app/settings/settings_binder.h"
-#include "core/common/image_limits.h"
 #include "ui_settings_dialog.h"
 
 namespace imagepro::app {
 
 namespace {
-constexpr double kBig = 1e9;
 const QString kMm = QStringLiteral(" mm");
 const QString kDeg = QStringLiteral(" deg");
 const QString kPx = QStringLiteral(" px");
@@ -52,43 +48,42 @@ void SettingsDialog::applyTo(Settings& into) const {
 void SettingsDialog::buildTarget() {
   auto* f = ui_->targetForm;
   auto& b = *binder_;
-  f->addRow(tr("Disk radius R"), named(b.doubleSpin([](Settings& s) -> auto& { return s.target.radius_mm; }, 0.001, kBig, 3, kMm),
+  f->addRow(tr("Disk radius R"), named(b.doubleSpin([](Settings& s) -> auto& { return s.target.radius_mm; }, 3, kMm),
                                        "targetRadius", tr("Radius of the white disk")));
-  f->addRow(tr("Spot radius r0"), named(b.doubleSpin([](Settings& s) -> auto& { return s.target.spot_radius_mm; }, 0.001, kBig, 3, kMm),
+  f->addRow(tr("Spot radius r0"), named(b.doubleSpin([](Settings& s) -> auto& { return s.target.spot_radius_mm; }, 3, kMm),
                                         "targetSpotRadius", tr("Radius of the two black spots")));
-  f->addRow(tr("Spot offset rf"), named(b.doubleSpin([](Settings& s) -> auto& { return s.target.spot_offset_mm; }, 0.001, kBig, 3, kMm),
+  f->addRow(tr("Spot offset rf"), named(b.doubleSpin([](Settings& s) -> auto& { return s.target.spot_offset_mm; }, 3, kMm),
                                         "targetSpotOffset", tr("Distance between the centres of the two spots")));
 }
 
 void SettingsDialog::buildCamera() {
   auto* f = ui_->cameraForm;
   auto& b = *binder_;
-  f->addRow(tr("Width"), named(b.intSpin([](Settings& s) -> auto& { return s.camera.width; }, 1, static_cast<int>(kMaxImageSide), kPx), "cameraWidth"));
-  f->addRow(tr("Height"), named(b.intSpin([](Settings& s) -> auto& { return s.camera.height; }, 1, static_cast<int>(kMaxImageSide), kPx), "cameraHeight"));
+  f->addRow(tr("Width"), named(b.intSpin([](Settings& s) -> auto& { return s.camera.width; }, kPx), "cameraWidth"));
+  f->addRow(tr("Height"), named(b.intSpin([](Settings& s) -> auto& { return s.camera.height; }, kPx), "cameraHeight"));
   f->addRow(tr("Image plane distance d0"),
-            named(b.doubleSpin([](Settings& s) -> auto& { return s.camera.image_plane_distance_mm; }, 0.001, kBig, 4, kMm),
+            named(b.doubleSpin([](Settings& s) -> auto& { return s.camera.image_plane_distance_mm; }, 4, kMm),
                   "cameraD0", tr("Distance of the image plane from the projection centre (thesis 4.2)")));
   f->addRow(tr("Principal point u0"),
-            named(b.doubleSpin([](Settings& s) -> auto& { return s.camera.principal_point_px[0]; }, -kBig, kBig, 2, kPx), "cameraU0"));
+            named(b.doubleSpin([](Settings& s) -> auto& { return s.camera.principal_point_px[0]; }, 2, kPx), "cameraU0"));
   f->addRow(tr("Principal point v0"),
-            named(b.doubleSpin([](Settings& s) -> auto& { return s.camera.principal_point_px[1]; }, -kBig, kBig, 2, kPx), "cameraV0"));
-  f->addRow(tr("Pixel size sx"), named(b.number([](Settings& s) -> auto& { return s.camera.pixel_size_mm[0]; }, 1e-9, kBig), "cameraSx",
+            named(b.doubleSpin([](Settings& s) -> auto& { return s.camera.principal_point_px[1]; }, 2, kPx), "cameraV0"));
+  f->addRow(tr("Pixel size sx"), named(b.number([](Settings& s) -> auto& { return s.camera.pixel_size_mm[0]; }), "cameraSx",
                                        tr("mm per pixel, horizontal")));
-  f->addRow(tr("Pixel size sy"), named(b.number([](Settings& s) -> auto& { return s.camera.pixel_size_mm[1]; }, 1e-9, kBig), "cameraSy",
+  f->addRow(tr("Pixel size sy"), named(b.number([](Settings& s) -> auto& { return s.camera.pixel_size_mm[1]; }), "cameraSy",
                                        tr("mm per pixel, vertical")));
 }
 
 void SettingsDialog::buildDistortion() {
   auto* f = ui_->distortionForm;
   auto& b = *binder_;
-  const double inf = std::numeric_limits<double>::max();
-  f->addRow(tr("k1 (px^-2)"), named(b.number([](Settings& s) -> auto& { return s.camera.distortion.k1; }, -inf, inf), "distortionK1",
+  f->addRow(tr("k1 (px^-2)"), named(b.number([](Settings& s) -> auto& { return s.camera.distortion.k1; }), "distortionK1",
                                      tr("Radial distortion, second order (thesis eq. 4.7)")));
-  f->addRow(tr("k2 (px^-4)"), named(b.number([](Settings& s) -> auto& { return s.camera.distortion.k2; }, -inf, inf), "distortionK2",
+  f->addRow(tr("k2 (px^-4)"), named(b.number([](Settings& s) -> auto& { return s.camera.distortion.k2; }), "distortionK2",
                                      tr("Radial distortion, fourth order (thesis eq. 4.7)")));
-  f->addRow(tr("p1 (px^-1)"), named(b.number([](Settings& s) -> auto& { return s.camera.distortion.p1; }, -inf, inf), "distortionP1",
+  f->addRow(tr("p1 (px^-1)"), named(b.number([](Settings& s) -> auto& { return s.camera.distortion.p1; }), "distortionP1",
                                      tr("Tangential distortion (thesis eq. 4.5)")));
-  f->addRow(tr("p2 (px^-1)"), named(b.number([](Settings& s) -> auto& { return s.camera.distortion.p2; }, -inf, inf), "distortionP2",
+  f->addRow(tr("p2 (px^-1)"), named(b.number([](Settings& s) -> auto& { return s.camera.distortion.p2; }), "distortionP2",
                                      tr("Tangential distortion (thesis eq. 4.5)")));
 }
 
@@ -96,21 +91,21 @@ void SettingsDialog::buildVirtual() {
   auto* f = ui_->virtualForm;
   auto& b = *binder_;
   auto v = [](Settings& s) -> VirtualSceneOptions& { return s.virtual_scene; };
-  f->addRow(tr("Frame rate"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).frame_rate_hz; }, 0.01, 10000.0, 2, QStringLiteral(" Hz")),
+  f->addRow(tr("Frame rate"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).frame_rate_hz; }, 2, QStringLiteral(" Hz")),
                                     "virtualFrameRate"));
-  f->addRow(tr("Translation per key"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).key_step_mm; }, 0.0, kBig, 2, kMm),
+  f->addRow(tr("Translation per key"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).key_step_mm; }, 2, kMm),
                                              "virtualKeyStepMm", tr("How far 4/6, 2/8 and Insert/Delete move the target")));
-  f->addRow(tr("Rotation per key"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).key_step_deg; }, 0.0, 180.0, 2, kDeg),
+  f->addRow(tr("Rotation per key"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).key_step_deg; }, 2, kDeg),
                                           "virtualKeyStepDeg", tr("How far the arrows and Home/End turn the target")));
   f->addRow(tr("Motion"), named(b.combo<MotionKind>([v](Settings& s) -> auto& { return v(s).motion.kind; }), "virtualMotion"));
   f->addRow(tr("Axis"), named(b.combo<PoseAxis>([v](Settings& s) -> auto& { return v(s).motion.axis; }), "virtualAxis"));
-  f->addRow(tr("Amplitude"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).motion.amplitude; }, -kBig, kBig, 2),
+  f->addRow(tr("Amplitude"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).motion.amplitude; }, 2),
                                    "virtualAmplitude", tr("mm for translations, degrees for rotations")));
-  f->addRow(tr("Period"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).motion.period_s; }, 0.001, kBig, 3, QStringLiteral(" s")),
+  f->addRow(tr("Period"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).motion.period_s; }, 3, QStringLiteral(" s")),
                                 "virtualPeriod"));
-  f->addRow(tr("Pendulum length"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).pendulum.length_mm; }, 0.001, kBig, 1, kMm),
+  f->addRow(tr("Pendulum length"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).pendulum.length_mm; }, 1, kMm),
                                          "pendulumLength", tr("Pivot to target centre (thesis 5.3.2)")));
-  f->addRow(tr("Pendulum amplitude"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).pendulum.amplitude_deg; }, 0.0, 89.0, 2, kDeg),
+  f->addRow(tr("Pendulum amplitude"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).pendulum.amplitude_deg; }, 2, kDeg),
                                             "pendulumAmplitude"));
   const char* pose_labels[] = {"Start Rx", "Start Ry", "Start Rz", "Start Tx", "Start Ty", "Start Tz"};
   const char* pose_names[] = {"virtualStartRx", "virtualStartRy", "virtualStartRz",
@@ -125,7 +120,7 @@ void SettingsDialog::buildVirtual() {
   for (int i = 0; i < 6; ++i) {
     const bool angle = i < 3;
     f->addRow(tr(pose_labels[i]),
-              named(b.doubleSpin(pose_field(i), angle ? -360.0 : (i == 5 ? 0.001 : -kBig), angle ? 360.0 : kBig, 2, angle ? kDeg : kMm),
+              named(b.doubleSpin(pose_field(i), 2, angle ? kDeg : kMm),
                     pose_names[i]));
   }
 }
@@ -135,19 +130,19 @@ void SettingsDialog::buildScene() {
   auto& b = *binder_;
   auto v = [](Settings& s) -> VirtualSceneOptions& { return s.virtual_scene; };
   f->addRow(tr("Rendering"), named(b.combo<RenderMode>([v](Settings& s) -> auto& { return v(s).mode; }), "virtualRenderMode"));
-  f->addRow(tr("Supersampling"), named(b.intSpin([v](Settings& s) -> auto& { return v(s).supersampling; }, 1, 16), "virtualSupersampling"));
-  f->addRow(tr("Blur sigma"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).blur_sigma_px; }, 0.0, 50.0, 2, kPx), "virtualBlur"));
-  f->addRow(tr("Noise sigma"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).noise_sigma; }, 0.0, 255.0, 1), "virtualNoise",
+  f->addRow(tr("Supersampling"), named(b.intSpin([v](Settings& s) -> auto& { return v(s).supersampling; }), "virtualSupersampling"));
+  f->addRow(tr("Blur sigma"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).blur_sigma_px; }, 2, kPx), "virtualBlur"));
+  f->addRow(tr("Noise sigma"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).noise_sigma; }, 1), "virtualNoise",
                                      tr("Gaussian noise, grey levels")));
   f->addRow(tr("Illumination gradient"),
-            named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).illumination_gradient; }, -1.0, 1.0, 2), "virtualGradient",
+            named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).illumination_gradient; }, 2), "virtualGradient",
                   tr("Fractional brightness change across the width")));
-  f->addRow(tr("Clutter"), named(b.intSpin([v](Settings& s) -> auto& { return v(s).clutter; }, 0, 1000), "virtualClutter",
+  f->addRow(tr("Clutter"), named(b.intSpin([v](Settings& s) -> auto& { return v(s).clutter; }), "virtualClutter",
                                  tr("Number of white bars and rectangles")));
-  f->addRow(tr("White level"), named(b.intSpin([v](Settings& s) -> auto& { return v(s).white_level; }, 0, 255), "virtualWhite"));
-  f->addRow(tr("Black level"), named(b.intSpin([v](Settings& s) -> auto& { return v(s).black_level; }, 0, 255), "virtualBlack"));
-  f->addRow(tr("Background level"), named(b.intSpin([v](Settings& s) -> auto& { return v(s).background_level; }, 0, 255), "virtualBackground"));
-  f->addRow(tr("Card size"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).card_size_mm; }, 0.0, kBig, 1, kMm), "virtualCard"));
+  f->addRow(tr("White level"), named(b.intSpin([v](Settings& s) -> auto& { return v(s).white_level; }), "virtualWhite"));
+  f->addRow(tr("Black level"), named(b.intSpin([v](Settings& s) -> auto& { return v(s).black_level; }), "virtualBlack"));
+  f->addRow(tr("Background level"), named(b.intSpin([v](Settings& s) -> auto& { return v(s).background_level; }), "virtualBackground"));
+  f->addRow(tr("Card size"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).card_size_mm; }, 1, kMm), "virtualCard"));
 }
 
 }  // namespace imagepro::app

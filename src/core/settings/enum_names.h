@@ -1,6 +1,8 @@
 #pragma once
-// The names of every option enum as they appear in the settings file, on the CLI
-// and in the GUI's lists: one table per enum, used for both directions.
+// One table per option enum: for each value its key (in settings files and on the
+// command line), its display name (the thesis's name, shown in the GUI's lists and
+// the docs) and a one-line description (the GUI's tooltips, the CLI's --help and the
+// user manual's method tables, `imagepro-cli settings --methods-markdown`).
 #include <optional>
 #include <span>
 #include <string>
@@ -13,7 +15,9 @@ namespace imagepro {
 template <class E>
 struct EnumEntry {
   E value;
-  std::string_view name;
+  std::string_view key;          // settings files and the command line: "at-mod"
+  std::string_view label;        // the GUI and the docs: "AT-Mod"
+  std::string_view description;  // what it is, and where the thesis has it
 };
 
 std::span<const EnumEntry<ThresholdMethod>> enumEntries(ThresholdMethod);
@@ -32,27 +36,42 @@ std::span<const EnumEntry<RenderMode>> enumEntries(RenderMode);
 std::span<const EnumEntry<MotionKind>> enumEntries(MotionKind);
 std::span<const EnumEntry<PoseAxis>> enumEntries(PoseAxis);
 
+// The value's row of its table; nullptr for a value outside it (a cast integer).
+template <class E>
+const EnumEntry<E>* enumEntry(E value) {
+  for (const auto& e : enumEntries(E{}))
+    if (e.value == value) return &e;
+  return nullptr;
+}
+
+// The key of `value` ("at-mod"), as settings files and the command line spell it.
 template <class E>
 std::string_view enumName(E value) {
-  for (const auto& e : enumEntries(E{}))
-    if (e.value == value) return e.name;
-  return "?";
+  const EnumEntry<E>* e = enumEntry(value);
+  return e ? e->key : std::string_view("?");
+}
+
+// The display name of `value` ("AT-Mod").
+template <class E>
+std::string_view enumLabel(E value) {
+  const EnumEntry<E>* e = enumEntry(value);
+  return e ? e->label : std::string_view("?");
 }
 
 template <class E>
-std::optional<E> parseEnum(std::string_view name) {
+std::optional<E> parseEnum(std::string_view key) {
   for (const auto& e : enumEntries(E{}))
-    if (e.name == name) return e.value;
+    if (e.key == key) return e.value;
   return std::nullopt;
 }
 
-// "a, b, c": the accepted names, for error messages and --help.
+// "a, b, c": the accepted keys, for error messages.
 template <class E>
 std::string enumChoices() {
   std::string out;
   for (const auto& e : enumEntries(E{})) {
     if (!out.empty()) out += ", ";
-    out += e.name;
+    out += e.key;
   }
   return out;
 }

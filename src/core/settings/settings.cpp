@@ -432,6 +432,100 @@ std::string parseProblem(std::string_view json_text, const std::string& what) {
          withoutExceptionTag(message);
 }
 
+// The path of the key being visited ("pipeline.ellipse.method"), for the visitors
+// that name keys without reading or writing a document.
+class KeyPath {
+ public:
+  template <class Fn>
+  void object(const char* key, Fn&& body) {
+    prefix_.push_back(path(key) + ".");
+    body();
+    prefix_.pop_back();
+  }
+
+ protected:
+  std::string path(const char* key) const { return (prefix_.empty() ? std::string() : prefix_.back()) + key; }
+
+ private:
+  std::vector<std::string> prefix_;
+};
+
+// Lists the keys: their paths, types and ranges.
+class KeyLister : public KeyPath {
+ public:
+  void field(const char* key, bool&) { add(key, SettingKey::Type::Flag); }
+  void field(const char* key, std::string&) { add(key, SettingKey::Type::Text); }
+  void field(const char* key, std::map<std::string, std::int64_t>&) { add(key, SettingKey::Type::Names); }
+
+  template <class E>
+    requires OptionEnum<E>
+  void field(const char* key, E&) {
+    SettingKey& k = add(key, SettingKey::Type::Choice);
+    k.choice = typeid(E);
+    for (const auto& e : enumEntries(E{})) k.choices.push_back({e.key, e.label, e.description});
+  }
+
+  template <class T>
+    requires std::is_arithmetic_v<T>
+  void field(const char* key, T&, T lo, T hi) {
+    number<T>(path(key), lo, hi);
+  }
+
+  template <class T, std::size_t N>
+  void field(const char* key, std::array<T, N>&, T lo, T hi) {
+    for (std::size_t i = 0; i < N; ++i) number<T>(path(key) + "[" + std::to_string(i) + "]", lo, hi);
+  }
+
+  std::vector<SettingKey> keys;
+
+ private:
+  SettingKey& add(const char* key, SettingKey::Type type) { return add(path(key), type); }
+  SettingKey& add(std::string path, SettingKey::Type type) {
+    keys.push_back({});
+    keys.back().path = std::move(path);
+    keys.back().type = type;
+    return keys.back();
+  }
+
+  template <class T>
+  void number(std::string path, T lo, T hi) {
+    SettingKey& k = add(std::move(path), std::is_integral_v<T> ? SettingKey::Type::WholeNumber : SettingKey::Type::Number);
+    k.lo = static_cast<double>(lo);
+    k.hi = static_cast<double>(hi);
+  }
+};
+
+// The path of the value at one address: the key a widget bound to that value edits.
+class AddressFinder : public KeyPath {
+ public:
+  explicit AddressFinder(const void* target) : target_(target) {}
+
+  template <class T>
+  void field(const char* key, T& value) {
+    check(key, &value);
+  }
+
+  template <class T>
+  void field(const char* key, T& value, T, T) {
+    check(key, &value);
+  }
+
+  template <class T, std::size_t N>
+  void field(const char* key, std::array<T, N>& value, T, T) {
+    for (std::size_t i = 0; i < N; ++i)
+      if (&value[i] == target_) found = path(key) + "[" + std::to_string(i) + "]";
+  }
+
+  std::string found;
+
+ private:
+  void check(const char* key, const void* address) {
+    if (address == target_) found = path(key);
+  }
+
+  const void* target_;
+};
+
 }  // namespace
 
 Status settingsFromJson(std::string_view json_text, Settings& out, std::string& error) {
@@ -483,6 +577,29 @@ Status loadSettings(const std::string& path, Settings& out, std::string& error) 
 
 Status saveSettings(const std::string& path, const Settings& settings, std::string& error) {
   return writeFileAtomically(path, settingsToJson(settings), error) ? Status::Ok : Status::FileNotWritable;
+}
+
+const std::vector<SettingKey>& settingKeys() {
+  static const std::vector<SettingKey> keys = [] {
+    Settings defaults;
+    KeyLister lister;
+    visitSettings(lister, defaults);
+    return std::move(lister.keys);
+  }();
+  return keys;
+}
+
+const SettingKey* findSettingKey(std::string_view path) {
+  for (const SettingKey& k : settingKeys())
+    if (k.path == path) return &k;
+  return nullptr;
+}
+
+const SettingKey* settingKeyOf(const Settings& settings, const void* field) {
+  AddressFinder finder(field);
+  // The walk only compares addresses; nothing is written through it.
+  visitSettings(finder, const_cast<Settings&>(settings));
+  return finder.found.empty() ? nullptr : findSettingKey(finder.found);
 }
 
 }  // namespace imagepro

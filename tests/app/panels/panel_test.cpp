@@ -7,7 +7,14 @@
 #include <QSpinBox>
 #include <QTest>
 
+#include <QDoubleValidator>
+
+#include <cmath>
+#include <limits>
+
+#include "app/analysis/analysis_window.h"
 #include "app/panels/control_panel.h"
+#include "app/settings/camera_settings_page.h"
 #include "app/main_window/main_window.h"
 #include "app/settings/settings_dialog.h"
 #include "app/worker/worker.h"
@@ -245,12 +252,98 @@ void PanelTest::listsComeFromTheEnumTables() {
   QCOMPARE(edges->count(), static_cast<int>(enumEntries(EdgeMethod{}).size()));
   for (int i = 0; i < edges->count(); ++i) {
     const auto value = static_cast<EdgeMethod>(edges->itemData(i).toInt());
-    QCOMPARE(edges->itemText(i), entryName(value));
-    QVERIFY(!edges->itemData(i, Qt::ToolTipRole).toString().isEmpty());
+    QCOMPARE(edges->itemText(i), labelOf(value));
+    QCOMPARE(edges->itemData(i, Qt::ToolTipRole).toString(), entryToolTip(*enumEntry(value)));
   }
+  // The lists show the thesis's names, not the settings file's keys.
+  const auto texts = [&w](const char* name) {
+    QStringList out;
+    auto* box = find<QComboBox>(w, name);
+    for (int i = 0; box && i < box->count(); ++i) out << box->itemText(i);
+    return out;
+  };
+  QCOMPARE(texts("thresholdMethod"), (QStringList{"Manual", "AT-Orig", "AT-Mod"}));
+  QCOMPARE(texts("rethresholdMethod"), (QStringList{"None", "Manual", "AT-Orig", "AT-Mod"}));
+  QCOMPARE(texts("connectivityMethod"), (QStringList{"CN0", "CN1"}));
+  QCOMPARE(texts("contourMode").first(), QStringLiteral("8 points ORG"));
+  QCOMPARE(texts("trackingStrategy"), (QStringList{"2D Corners", "3D Parameters"}));
+  QVERIFY(find<QComboBox>(w, "thresholdMethod")->itemData(2, Qt::ToolTipRole).toString().startsWith("AT-Mod: "));
   // The panels start at the defaults of options.h.
   QCOMPARE(edges->currentData().toInt(), static_cast<int>(PipelineOptions{}.edge_method));
   QCOMPARE(find<QSpinBox>(w, "thresholdValue")->value(), ThresholdOptions{}.manual_value);
+}
+
+namespace {
+
+bool onCameraDevicePage(const QObject* o) {
+  for (; o; o = o->parent())
+    if (qobject_cast<const CameraSettingsPage*>(o)) return true;
+  return false;
+}
+
+// The widget's range against its settings key's; an empty string when they agree.
+QString rangeProblem(QWidget* widget, const SettingKey& key) {
+  const QString name = widget->objectName() + QStringLiteral(" (") + QString::fromStdString(key.path) + QStringLiteral(")");
+  if (auto* spin = qobject_cast<QSpinBox*>(widget)) {
+    if (key.type != SettingKey::Type::WholeNumber || spin->minimum() != key.lo || spin->maximum() != key.hi)
+      return name + QStringLiteral(": %1..%2 against %3..%4").arg(spin->minimum()).arg(spin->maximum()).arg(key.lo).arg(key.hi);
+    return {};
+  }
+  if (auto* spin = qobject_cast<QDoubleSpinBox*>(widget)) {
+    // A bound finer than the box's last place is the first value inside it that the box shows.
+    const double place = std::pow(10.0, -spin->decimals());
+    const bool lo_ok = spin->minimum() == key.lo || (spin->minimum() > key.lo && spin->minimum() - key.lo < place);
+    const bool hi_ok = spin->maximum() == key.hi || (spin->maximum() < key.hi && key.hi - spin->maximum() < place);
+    if (key.type != SettingKey::Type::Number || !lo_ok || !hi_ok)
+      return name + QStringLiteral(": %1..%2 against %3..%4").arg(spin->minimum()).arg(spin->maximum()).arg(key.lo).arg(key.hi);
+    return {};
+  }
+  if (auto* edit = qobject_cast<QLineEdit*>(widget)) {
+    const auto* v = qobject_cast<const QDoubleValidator*>(edit->validator());
+    if (!v || v->bottom() != key.lo || v->top() != key.hi) return name + QStringLiteral(": the validator's range differs");
+    return {};
+  }
+  return {};
+}
+
+}  // namespace
+
+void PanelTest::rangesComeFromTheSettingsTable() {
+  MainWindow& w = *window_;
+  w.findChild<QPushButton*>(QStringLiteral("settingsDialog"))->click();
+  auto* dialog = w.findChild<SettingsDialog*>();
+  QVERIFY(dialog);
+  AnalysisWindow analysis(w);
+  int numbers = 0, in_analysis = 0;
+  for (QWidget* root : {static_cast<QWidget*>(w.controlPanel()), static_cast<QWidget*>(dialog),
+                        static_cast<QWidget*>(&analysis)}) {
+    for (QWidget* widget : root->findChildren<QWidget*>()) {
+      const QString key = widget->property(kSettingKeyProperty).toString();
+      const bool number = qobject_cast<QAbstractSpinBox*>(widget) ||
+                          (qobject_cast<QLineEdit*>(widget) && !qobject_cast<QAbstractSpinBox*>(widget->parent()));
+      // The camera device's controls take the device's ranges; the Analysis window's
+      // study parameters (frames, noise, known distance ...) are no settings.
+      if (onCameraDevicePage(widget) || (root == &analysis && key.isEmpty())) continue;
+      if (!number && key.isEmpty()) continue;
+      QVERIFY2(!key.isEmpty(), qPrintable(widget->objectName() + QStringLiteral(" is bound to no settings key")));
+      const SettingKey* k = findSettingKey(key.toStdString());
+      QVERIFY2(k, qPrintable(key));
+      if (!number) continue;
+      const QString problem = rangeProblem(widget, *k);
+      QVERIFY2(problem.isEmpty(), qPrintable(problem));
+      ++numbers;
+      in_analysis += root == &analysis;
+    }
+  }
+  QVERIFY(numbers >= 60);
+  QCOMPARE(in_analysis, 1);  // the rate for untimed frames: the settings' frame rate
+  // The trace's inlier distance has no upper bound in the settings file, so none here.
+  auto* trace = find<QDoubleSpinBox>(w, "ellipseTraceInlier");
+  QCOMPARE(trace->maximum(), std::numeric_limits<double>::infinity());
+  trace->setValue(150.0);
+  QVERIFY(waitForApplied(w, [](const Settings& s) { return s.pipeline.ellipse.trace_inlier_px == 150.0; }));
+  // "Above zero" in the file is the box's first step above zero.
+  QCOMPARE(dialog->findChild<QDoubleSpinBox*>(QStringLiteral("targetRadius"))->minimum(), 0.001);
 }
 
 }  // namespace imagepro::app::test

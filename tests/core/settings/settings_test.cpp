@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <map>
+#include <typeindex>
 
 #include "core/common/atomic_file.h"
 #include "core/settings/enum_names.h"
@@ -238,9 +242,113 @@ TEST(Settings, ShippedDefaultFileMatchesDefaults) {
 }
 
 TEST(EnumNames, EveryNameParsesBack) {
-  for (const auto& e : enumEntries(ContourMode{})) EXPECT_EQ(parseEnum<ContourMode>(e.name), e.value);
+  for (const auto& e : enumEntries(ContourMode{})) EXPECT_EQ(parseEnum<ContourMode>(e.key), e.value);
   EXPECT_EQ(enumName(ThresholdMethod::AtOrig), "at-orig");
   EXPECT_FALSE(parseEnum<EdgeMethod>("canny").has_value());
+}
+
+TEST(EnumNames, EveryValueHasAKeyANameAndADescription) {
+  const auto check = [](auto e) {
+    using E = decltype(e);
+    for (const auto& entry : enumEntries(E{})) {
+      EXPECT_FALSE(entry.key.empty());
+      EXPECT_FALSE(entry.label.empty()) << entry.key;
+      EXPECT_FALSE(entry.description.empty()) << entry.key;
+      EXPECT_EQ(entry.description.find('\n'), std::string_view::npos) << entry.key;
+      EXPECT_EQ(enumLabel(entry.value), entry.label);
+    }
+  };
+  check(ThresholdMethod{}), check(Binarization{}), check(EdgeMethod{}), check(ConnectivityMethod{});
+  check(EllipseMethod{}), check(FitAcceptRule{}), check(ContourMode{}), check(TrackingMode{});
+  check(ApplicationLevel{}), check(DisplayOptions::Background{}), check(DisplayOptions::Edges{});
+  check(DisplayOptions::Target{}), check(RenderMode{}), check(MotionKind{}), check(PoseAxis{});
+  // The thesis's names (appendix A), not the file's keys.
+  EXPECT_EQ(enumLabel(ThresholdMethod::AtMod), "AT-Mod");
+  EXPECT_EQ(enumLabel(ConnectivityMethod::CN1), "CN1");
+  EXPECT_EQ(enumLabel(ContourMode::EightPointsOrg), "8 points ORG");
+  EXPECT_EQ(enumLabel(TrackingMode::Corners2D), "2D Corners");
+  EXPECT_EQ(enumLabel(static_cast<EdgeMethod>(99)), "?");
+}
+
+// {"a": {"b": value}} for the path "a.b".
+std::string documentWith(const std::string& path, const std::string& value) {
+  std::string open, close;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t dot = path.find('.', start);
+    const std::string key = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    open += "{\"" + key + "\": ";
+    close += "}";
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return open + value + close;
+}
+
+std::string number(double v) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+TEST(SettingKeys, TheTableGivesEveryKeyItsRange) {
+  const SettingKey* trace = findSettingKey("pipeline.ellipse.trace_inlier_px");
+  ASSERT_NE(trace, nullptr);
+  EXPECT_EQ(trace->type, SettingKey::Type::Number);
+  EXPECT_EQ(trace->lo, 0.0);
+  EXPECT_EQ(trace->hi, std::numeric_limits<double>::infinity());
+  const SettingKey* value = findSettingKey("pipeline.threshold.value");
+  ASSERT_NE(value, nullptr);
+  EXPECT_EQ(value->type, SettingKey::Type::WholeNumber);
+  EXPECT_EQ(value->lo, 0.0);
+  EXPECT_EQ(value->hi, 255.0);
+  EXPECT_EQ(findSettingKey("pipeline.ellipse"), nullptr);
+  EXPECT_EQ(findSettingKey("pipeline.ellipse.no_such_key"), nullptr);
+
+  const SettingKey* method = findSettingKey("pipeline.rethreshold.method");
+  ASSERT_NE(method, nullptr);
+  EXPECT_EQ(method->type, SettingKey::Type::Choice);
+  EXPECT_EQ(method->choice, std::type_index(typeid(ThresholdMethod)));
+  ASSERT_EQ(method->choices.size(), enumEntries(ThresholdMethod{}).size());
+  EXPECT_EQ(method->choices[3].label, "AT-Mod");
+
+  // Every number key accepts both ends of its range and refuses what lies beyond them.
+  for (const SettingKey& k : settingKeys()) {
+    if (k.type != SettingKey::Type::Number && k.type != SettingKey::Type::WholeNumber) continue;
+    if (k.path.find('[') != std::string::npos) continue;  // array elements: written whole
+    const double step = k.type == SettingKey::Type::WholeNumber ? 1.0 : 1e-3 * std::max(1.0, std::abs(k.lo));
+    const double hi_step = k.type == SettingKey::Type::WholeNumber ? 1.0 : 1e-3 * std::max(1.0, std::abs(k.hi));
+    const auto loads = [&k](double v) {
+      Settings s;
+      std::string err;
+      return settingsFromJson(documentWith(k.path, number(v)), s, err);
+    };
+    for (const double v : {k.lo, k.hi}) {
+      if (std::isfinite(v)) {
+        EXPECT_EQ(loads(v), Status::Ok) << k.path << " at " << v;
+      }
+    }
+    if (std::isfinite(k.lo)) {
+      EXPECT_EQ(loads(k.lo - step), Status::InvalidSettings) << k.path;
+    }
+    if (std::isfinite(k.hi)) {
+      EXPECT_EQ(loads(k.hi + hi_step), Status::InvalidSettings) << k.path;
+    }
+  }
+}
+
+TEST(SettingKeys, AFieldsAddressNamesItsKey) {
+  Settings s;
+  const SettingKey* trace = settingKeyOf(s, &s.pipeline.ellipse.trace_inlier_px);
+  ASSERT_NE(trace, nullptr);
+  EXPECT_EQ(trace->path, "pipeline.ellipse.trace_inlier_px");
+  const SettingKey* v0 = settingKeyOf(s, &s.camera.principal_point_px[1]);
+  ASSERT_NE(v0, nullptr);
+  EXPECT_EQ(v0->path, "camera.principal_point_px[1]");
+  EXPECT_EQ(settingKeyOf(s, &s.pipeline.tracking.mode)->path, "pipeline.tracking.mode");
+  // A value outside this Settings object, even the same field of another, has no key.
+  Settings other;
+  EXPECT_EQ(settingKeyOf(s, &other.pipeline.ellipse.trace_inlier_px), nullptr);
 }
 
 }  // namespace
