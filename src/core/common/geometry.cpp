@@ -58,15 +58,6 @@ Eigen::Vector3d backProjectIdeal(const CameraModel& cam, const Eigen::Vector2d& 
   return {(uv.x() - cam.u0()) / cam.fu(), (uv.y() - cam.v0()) / cam.fv(), 1.0};
 }
 
-Eigen::Vector2d distortionDelta(const Distortion& d, const Eigen::Vector2d& q) {
-  const double u = q.x();
-  const double v = q.y();
-  const double r2 = u * u + v * v;
-  const double radial = d.k1 * r2 + d.k2 * r2 * r2;
-  return {u * radial + 2.0 * d.p1 * u * v + d.p2 * (r2 + 2.0 * u * u),
-          v * radial + d.p1 * (r2 + 2.0 * v * v) + 2.0 * d.p2 * u * v};
-}
-
 Eigen::Vector2d distortPixel(const CameraModel& cam, const Eigen::Vector2d& undistorted) {
   const Eigen::Vector2d c(cam.u0(), cam.v0());
   return undistorted + distortionDelta(cam.distortion, undistorted - c);

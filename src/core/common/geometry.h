@@ -1,6 +1,6 @@
 #pragma once
 // The shared geometric vocabulary of ImagePro: camera model, target and pattern
-// geometry, pose, and the lens distortion model (thesis eq. 4.7).
+// geometry, pose, and the lens distortion model (thesis eq. 4.7, lens_model.h).
 // Conventions (docs/conventions.md, binding):
 //  * image (u, v) in pixels, u right, v down, centre of the top-left pixel at (0, 0);
 //  * camera frame X right, Y down, Z along the optical axis;
@@ -11,20 +11,9 @@
 #include <Eigen/Core>
 #include <array>
 
+#include "core/common/lens_model.h"
+
 namespace imagepro {
-
-// Lens distortion coefficients of thesis eq. 4.7, in pixel units.
-struct Distortion {
-  double k1 = 0.0;  // px^-2
-  double k2 = 0.0;  // px^-4
-  double p1 = 0.0;  // px^-1
-  double p2 = 0.0;  // px^-1
-
-  bool isZero() const { return k1 == 0.0 && k2 == 0.0 && p1 == 0.0 && p2 == 0.0; }
-};
-
-// The distortion the thesis measured on its camera (thesis 4.6).
-inline constexpr Distortion kThesisCameraDistortion{-2.05e-7, -1.21e-13, 3.39e-6, 2.56e-6};
 
 struct CameraModel {
   int width = 640;
@@ -83,9 +72,7 @@ Eigen::Vector2d projectIdeal(const CameraModel& cam, const Eigen::Vector3d& Pc);
 // Ray direction (camera frame, z = 1) through an ideal (undistorted) pixel.
 Eigen::Vector3d backProjectIdeal(const CameraModel& cam, const Eigen::Vector2d& uv);
 
-// Distortion displacement delta(u_ud, v_ud) of eq. 4.7, both relative to the principal point.
-Eigen::Vector2d distortionDelta(const Distortion& d, const Eigen::Vector2d& undistortedRel);
-// Absolute pixel coordinates: undistorted -> distorted (forward model, exact).
+// Absolute pixel coordinates: undistorted -> distorted (forward model of lens_model.h, exact).
 Eigen::Vector2d distortPixel(const CameraModel& cam, const Eigen::Vector2d& undistorted);
 
 }  // namespace imagepro

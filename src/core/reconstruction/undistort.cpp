@@ -1,6 +1,5 @@
 #include "core/reconstruction/undistort.h"
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 
@@ -10,26 +9,9 @@
 
 namespace imagepro {
 
-DistortionJacobian distortionWithJacobian(const Distortion& d, const Eigen::Vector2d& rel) {
-  const double u = rel.x();
-  const double v = rel.y();
-  const double uu = u * u;
-  const double vv = v * v;
-  const double uv = u * v;
-  const double r2 = uu + vv;
-  const double radial = d.k1 * r2 + d.k2 * r2 * r2;
-  // d(radial)/du = 2u (k1 + 2 k2 r^2), likewise for v.
-  const double dRadialCoef = 2.0 * (d.k1 + 2.0 * d.k2 * r2);
-  DistortionJacobian out;
-  out.f.x() = u * radial + 2.0 * d.p1 * uv + d.p2 * (r2 + 2.0 * uu);
-  out.f.y() = v * radial + d.p1 * (r2 + 2.0 * vv) + 2.0 * d.p2 * uv;
-  const double cross = uv * dRadialCoef + 2.0 * d.p1 * u + 2.0 * d.p2 * v;  // df_u/dv = df_v/du
-  out.J(0, 0) = radial + uu * dRadialCoef + 2.0 * d.p1 * v + 6.0 * d.p2 * u;
-  out.J(0, 1) = cross;
-  out.J(1, 0) = cross;
-  out.J(1, 1) = radial + vv * dRadialCoef + 6.0 * d.p1 * v + 2.0 * d.p2 * u;
-  return out;
-}
+namespace {
+constexpr double kExactStepPx = 1e-12;  // machine precision on an image's coordinates
+}  // namespace
 
 Eigen::Vector2d undistortTaylor(const CameraModel& cam, const Eigen::Vector2d& distortedPx) {
   const Eigen::Vector2d c(cam.u0(), cam.v0());
@@ -45,18 +27,9 @@ Eigen::Vector2d undistortTaylor(const CameraModel& cam, const Eigen::Vector2d& d
 Eigen::Vector2d undistortExact(const CameraModel& cam, const Eigen::Vector2d& distortedPx,
                                int maxIterations) {
   const Eigen::Vector2d c(cam.u0(), cam.v0());
-  const Eigen::Vector2d x = distortedPx - c;
   Eigen::Vector2d y = undistortTaylor(cam, distortedPx) - c;
-  for (int i = 0; i < maxIterations; ++i) {
-    const DistortionJacobian fj = distortionWithJacobian(cam.distortion, y);
-    const Eigen::Vector2d residual = y + fj.f - x;
-    const Eigen::Matrix2d A = Eigen::Matrix2d::Identity() + fj.J;
-    const double det = A.determinant();
-    if (!(std::abs(det) > 1e-12)) break;  // the model folds here: keep the last iterate
-    const Eigen::Vector2d step = A.inverse() * residual;
-    y -= step;
-    if (step.squaredNorm() < 1e-24) break;
-  }
+  // Beyond the fold of the model, or unconverged, the last iterate is kept.
+  invertDistortion(cam.distortion, distortedPx - c, y, maxIterations, kExactStepPx);
   return y + c;
 }
 
@@ -64,7 +37,7 @@ namespace {
 
 #if defined(__SSE2__)
 // undistortTaylor for two points at once, one per lane, in the very operations and order of
-// distortionWithJacobian and undistortTaylor above (the same results to the bit).
+// distortionWithJacobian (lens_model.cpp) and undistortTaylor above (the same results to the bit).
 void undistortTaylorPair(const CameraModel& cam, double* a, double* b) {
   const Distortion& d = cam.distortion;
   auto all = [](double x) { return _mm_set1_pd(x); };

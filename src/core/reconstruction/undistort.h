@@ -6,22 +6,16 @@
 //    partial derivatives of f_u, f_v (eqs. 4.15-4.16) written out analytically. One
 //    evaluation, no iteration; error grows with the distortion (thesis: <= 1 px for its
 //    camera over 640x480, <= 6 px for exaggerated parameters).
-//  * undistortExact: Newton's method on x = y + f(y), started from the Taylor value;
-//    converges to machine precision in a few steps wherever the model is invertible.
+//  * undistortExact: Newton's method on x = y + f(y) (lens_model.h), started from the
+//    Taylor value; converges to machine precision in a few steps wherever the model is
+//    invertible.
+// f and its partial derivatives are those of core/common/lens_model.h.
 #include <Eigen/Core>
 #include <span>
 
 #include "core/common/geometry.h"
 
 namespace imagepro {
-
-// f = (f_u, f_v) of eqs. 4.15-4.16 at a point relative to the principal point, and its
-// Jacobian [[df_u/du, df_u/dv], [df_v/du, df_v/dv]].
-struct DistortionJacobian {
-  Eigen::Vector2d f;
-  Eigen::Matrix2d J;
-};
-DistortionJacobian distortionWithJacobian(const Distortion& d, const Eigen::Vector2d& rel);
 
 // Absolute pixel coordinates: distorted -> undistorted.
 Eigen::Vector2d undistortTaylor(const CameraModel& cam, const Eigen::Vector2d& distortedPx);

@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include "core/common/lens_model.h"
+
 namespace imagepro {
 namespace {
 
@@ -123,46 +125,13 @@ void makeClutter(int count, unsigned seed, int width, int height, std::vector<Cl
   }
 }
 
-// The distortion map q -> q + delta(q) of eq. 4.7 at q (relative to the principal
-// point): its value and its Jacobian [j00 j01; j01 j11] (symmetric).
-struct DistortionMap {
-  double du, dv, j00, j01, j11;
-};
+// The renderer's undistortion: Newton's method (lens_model.h) to 1e-4 px, whose error is
+// then of the order of the distortion's curvature times 1e-8 px^2.
+constexpr int kUndistortIterations = 30;
+constexpr double kUndistortStepPx = 1e-4;
 
-inline DistortionMap distortionMap(const Distortion& d, double u, double v) {
-  const double r2 = u * u + v * v;
-  const double radial = d.k1 * r2 + d.k2 * r2 * r2;
-  const double dradial = d.k1 + 2.0 * d.k2 * r2;  // d(radial)/d(r2)
-  DistortionMap m;
-  m.du = u + u * radial + 2.0 * d.p1 * u * v + d.p2 * (r2 + 2.0 * u * u);
-  m.dv = v + v * radial + d.p1 * (r2 + 2.0 * v * v) + 2.0 * d.p2 * u * v;
-  m.j00 = 1.0 + radial + 2.0 * u * u * dradial + 2.0 * d.p1 * v + 6.0 * d.p2 * u;
-  m.j01 = 2.0 * u * v * dradial + 2.0 * d.p1 * u + 2.0 * d.p2 * v;
-  m.j11 = 1.0 + radial + 2.0 * v * v * dradial + 6.0 * d.p1 * v + 2.0 * d.p2 * u;
-  return m;
-}
-
-// Undistorted position q (relative to the principal point) with q + delta(q) = p:
-// Newton's method on eq. 4.7, starting from `q`. False when it does not converge to a
-// solution on the unfolded branch (positive Jacobian): with strong distortion, image
-// points beyond the fold of the model have no undistorted position.
 bool undistortRelative(const Distortion& d, const Eigen::Vector2d& p, Eigen::Vector2d& q) {
-  for (int it = 0; it < 30; ++it) {
-    const DistortionMap m = distortionMap(d, q.x(), q.y());
-    const double fx = m.du - p.x();
-    const double fy = m.dv - p.y();
-    const double det = m.j00 * m.j11 - m.j01 * m.j01;
-    if (!(det > 1e-9) || !(m.j00 > 0.0)) return false;
-    if (fx * fx + fy * fy < 1e-20) return true;  // 1e-10 px
-    const double step_u = (m.j11 * fx - m.j01 * fy) / det;
-    const double step_v = (m.j00 * fy - m.j01 * fx) / det;
-    q.x() -= step_u;
-    q.y() -= step_v;
-    // Newton converges quadratically: after a step below 1e-4 px the error is of the
-    // order of the distortion's curvature (<< 1 / px) times 1e-8 px^2.
-    if (step_u * step_u + step_v * step_v < 1e-8) return true;
-  }
-  return false;
+  return invertDistortion(d, p, q, kUndistortIterations, kUndistortStepPx);
 }
 
 // As above from the best start available: `guess` if it converges, else p itself.
@@ -430,11 +399,11 @@ class FrameRenderer {
     } else if (distorted_) {
       qu = cxn * cache_.fu;
       qv = cyn * cache_.fv;
-      const DistortionMap m = distortionMap(cache_.distortion, qu, qv);
-      const double det = m.j00 * m.j11 - m.j01 * m.j01;
-      i00 = m.j11 / det;
-      i01 = -m.j01 / det;
-      i11 = m.j00 / det;
+      const Eigen::Matrix2d inverse =
+          (Eigen::Matrix2d::Identity() + distortionWithJacobian(cache_.distortion, {qu, qv}).J).inverse();
+      i00 = inverse(0, 0);
+      i01 = inverse(0, 1);
+      i11 = inverse(1, 1);
     }
     int sum = 0;
     for (int j = 0; j < n; ++j) {

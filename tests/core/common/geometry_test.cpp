@@ -59,15 +59,5 @@ TEST(Geometry, ProjectionAndBackProjectionAgree) {
   EXPECT_NEAR(ray.y() * 900, -80, 1e-9);
 }
 
-TEST(Geometry, DistortionMatchesEquation47) {
-  Distortion d{1e-7, 1e-13, 2e-6, 3e-6};
-  const Eigen::Vector2d q(200, -100);
-  const double r2 = 200.0 * 200 + 100.0 * 100;
-  const Eigen::Vector2d delta = distortionDelta(d, q);
-  EXPECT_NEAR(delta.x(), 200 * (1e-7 * r2 + 1e-13 * r2 * r2) + 2 * 2e-6 * 200 * -100 + 3e-6 * (r2 + 2 * 200.0 * 200), 1e-12);
-  EXPECT_NEAR(delta.y(), -100 * (1e-7 * r2 + 1e-13 * r2 * r2) + 2e-6 * (r2 + 2 * 100.0 * 100) + 2 * 3e-6 * 200 * -100, 1e-12);
-  EXPECT_EQ(distortionDelta(d, Eigen::Vector2d::Zero()), Eigen::Vector2d::Zero());
-}
-
 }  // namespace
 }  // namespace imagepro

@@ -49,25 +49,6 @@ TEST(Undistort, PointsInVectorLanesEqualTheTaylorInverseToTheBit) {
   }
 }
 
-TEST(Undistort, JacobianMatchesFiniteDifferences) {
-  const Distortion d = exaggeratedCamera().distortion;
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> pos(-330, 330);
-  for (int i = 0; i < 200; ++i) {
-    const Eigen::Vector2d q(pos(rng), pos(rng));
-    const DistortionJacobian fj = distortionWithJacobian(d, q);
-    EXPECT_LT((fj.f - distortionDelta(d, q)).norm(), 1e-12);
-    const double h = 1e-4;
-    for (int k = 0; k < 2; ++k) {
-      Eigen::Vector2d dq = Eigen::Vector2d::Zero();
-      dq[k] = h;
-      const Eigen::Vector2d column = (distortionDelta(d, q + dq) - distortionDelta(d, q - dq)) / (2 * h);
-      EXPECT_NEAR(fj.J(0, k), column.x(), 1e-8);
-      EXPECT_NEAR(fj.J(1, k), column.y(), 1e-8);
-    }
-  }
-}
-
 TEST(Undistort, NoDistortionIsIdentity) {
   CameraModel cam;
   const Eigen::Vector2d p(12.25, 470.5);
