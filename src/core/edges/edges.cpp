@@ -67,25 +67,35 @@ inline void laplacePixel(const std::uint8_t* up, const std::uint8_t* cur, const 
   if (up[x] == 0 || down[x] == 0 || cur[l] == 0 || cur[r] == 0) out.push_back(sobelPixel(up, cur, down, x, y, width));
 }
 
+// The Laplace pass (laplace_pass.inc) once per vector width.
 #if defined(__SSE2__)
 namespace sse2 {
-#include "core/edges/laplace_rows.inc"
+struct Ops {
+  static constexpr int kWidth = 16;
+  using Pixels = __m128i;
+  static Pixels load(const std::uint8_t* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); }
+  static Pixels darker(Pixels a, Pixels b) { return _mm_min_epu8(a, b); }
+  static std::uint64_t blackMask(Pixels v) {
+    return static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_setzero_si128())));
+  }
+};
+#include "core/edges/laplace_pass.inc"
 }  // namespace sse2
 
-#if defined(__GNUC__) && !defined(__clang__)
-#define LAPLACE_AVX2 1
-#pragma GCC push_options
-#pragma GCC target("avx2,bmi,bmi2")
+IMAGEPRO_AVX2_BEGIN
 namespace avx2 {
-#include "core/edges/laplace_rows.inc"
+struct Ops {
+  static constexpr int kWidth = 32;
+  using Pixels = __m256i;
+  static Pixels load(const std::uint8_t* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
+  static Pixels darker(Pixels a, Pixels b) { return _mm256_min_epu8(a, b); }
+  static std::uint64_t blackMask(Pixels v) {
+    return static_cast<std::uint32_t>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(v, _mm256_setzero_si256())));
+  }
+};
+#include "core/edges/laplace_pass.inc"
 }  // namespace avx2
-#pragma GCC pop_options
-#undef LAPLACE_AVX2
-
-bool hasAvx2() { return simdLevel() == SimdLevel::Avx2; }
-#else
-bool hasAvx2() { return false; }
-#endif
+IMAGEPRO_AVX2_END
 #endif
 
 }  // namespace
@@ -94,7 +104,7 @@ Status detectEdgesLaplace(const cv::Mat& binary, EdgeList& out) {
   out.clear();
   if (!usableBinary(binary)) return Status::EmptyFrame;
 #if defined(__SSE2__)
-  if (hasAvx2())
+  if (simdAllows(SimdLevel::Avx2))
     avx2::laplaceRows(binary, out);
   else
     sse2::laplaceRows(binary, out);

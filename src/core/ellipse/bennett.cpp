@@ -157,12 +157,11 @@ struct Ops {
   template <class T>
   static void store(T* p, V v) { _mm_storeu_si128(reinterpret_cast<__m128i*>(p), v); }
 };
-#include "core/ellipse/bennett_rays.h"
+#include "core/ellipse/bennett_rays_pass.inc"
 }  // namespace sse2
 
 // The same text compiled for AVX2 (called only where the processor has it).
-#pragma GCC push_options
-#pragma GCC target("avx2")
+IMAGEPRO_AVX2_BEGIN
 namespace avx2 {
 struct Ops {
   using V = __m256i;
@@ -186,7 +185,7 @@ struct Ops {
   template <class T>
   static void store(T* p, V v) { _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), v); }
 };
-#include "core/ellipse/bennett_rays.h"
+#include "core/ellipse/bennett_rays_pass.inc"
 
 // scalarPairs on four pairs per step: the same operations in the same order on every
 // lane (no fused multiply-add), so every lane's ray is the scalar one to the bit; the
@@ -264,22 +263,20 @@ std::size_t vectorPairs(const PointArrays& p, std::size_t i, std::size_t& j, std
   return pairs;
 }
 }  // namespace avx2
-#pragma GCC pop_options
-
-inline bool hasAvx2() { return simdLevel() == SimdLevel::Avx2; }
+IMAGEPRO_AVX2_END
 
 void voteRays(std::uint32_t* acc, const Box& box, std::span<const Ray> rays, std::int32_t* cells) {
   const std::int32_t spare = box.w * box.h;
-  if (hasAvx2())
+  if (simdAllows(SimdLevel::Avx2))
     avx2::voteRays(acc, box.w, spare, rays, cells);
   else
     sse2::voteRays(acc, box.w, spare, rays, cells);
 }
 std::uint32_t maxCount(const std::uint32_t* acc, std::size_t n) {
-  return hasAvx2() ? avx2::maxCount(acc, n) : sse2::maxCount(acc, n);
+  return simdAllows(SimdLevel::Avx2) ? avx2::maxCount(acc, n) : sse2::maxCount(acc, n);
 }
 std::size_t firstIndexOf(const std::uint32_t* acc, std::size_t n, std::uint32_t value) {
-  return hasAvx2() ? avx2::firstIndexOf(acc, n, value) : sse2::firstIndexOf(acc, n, value);
+  return simdAllows(SimdLevel::Avx2) ? avx2::firstIndexOf(acc, n, value) : sse2::firstIndexOf(acc, n, value);
 }
 #else
 void voteRays(std::uint32_t* acc, const Box& box, std::span<const Ray> rays, std::int32_t*) {
@@ -310,7 +307,7 @@ std::size_t accumulatePairs(std::span<const EdgePixel> path, std::size_t usable,
     if (needed == available || static_cast<std::size_t>(rng() % available) < needed) ws.sample.push_back(i);
     ++seen;
   }
-  // The box's cells and kSpareCounts more for the lanes past a ray's end (bennett_rays.h),
+  // The box's cells and kSpareCounts more for the lanes past a ray's end (bennett_rays_pass.inc),
   // dropped when the counting is done.
   const std::size_t grid = static_cast<std::size_t>(box.w) * box.h;
   ws.accumulator.assign(grid + kSpareCounts, 0u);
@@ -336,7 +333,7 @@ std::size_t accumulatePairs(std::span<const EdgePixel> path, std::size_t usable,
   ws.rays.resize(m);
   ws.cells.resize(static_cast<std::size_t>(std::max(box.w, box.h)) + 8);  // a ray's cells, whole vectors
 #if defined(__SSE2__)
-  const bool wide = hasAvx2();
+  const bool wide = simdAllows(SimdLevel::Avx2);
 #endif
   std::size_t pairs = 0;
   for (std::size_t i = 0; i < m; ++i) {

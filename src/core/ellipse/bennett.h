@@ -29,7 +29,7 @@
 //    take one front of a contour listed breadth first) and each vote weighs
 //    (n (n-1)) / (m (m-1)), so scores estimate the all-pairs score.
 // The pair set-up, the ray walk and the peak search run on vector lanes (AVX/AVX2 where
-// the processor has them, else SSE2 and scalar; bennett_rays.h) and count exactly what
+// the processor has them, else SSE2 and scalar; bennett_rays_pass.inc) and count exactly what
 // the one-cell-at-a-time definition counts.
 #include <cstddef>
 #include <cstdint>

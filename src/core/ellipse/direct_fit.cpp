@@ -13,6 +13,7 @@
 #include <immintrin.h>
 #endif
 
+#include "core/common/simd_level.h"
 #include "core/ellipse/pixel_passes.h"
 
 namespace imagepro {
@@ -109,8 +110,7 @@ void exactSums(std::span<const EdgePixel> block, int ox, int oy, std::array<doub
 
 // exactSums with two pixels per AVX2 vector, lanes (x0, y0, x1, y1): the same exact
 // integer sums (so the same doubles), in half the instructions.
-#pragma GCC push_options
-#pragma GCC target("avx2")
+IMAGEPRO_AVX2_BEGIN
 void exactSumsAvx2(std::span<const EdgePixel> block, int ox, int oy, std::array<double, 15>& sum) {
   const __m128i origin = _mm_setr_epi32(ox, oy, ox, oy);
   const __m256d zero = _mm256_setzero_pd();
@@ -154,7 +154,7 @@ void exactSumsAvx2(std::span<const EdgePixel> block, int ox, int oy, std::array<
          first(s3), first(s21), second(s21), second(s3),
          first(s4), first(s31), first(s22), second(s31), second(s4)};
 }
-#pragma GCC pop_options
+IMAGEPRO_AVX2_END
 #endif
 
 // Points whose best unconstrained conic is a hyperbola or parabola that fits this many
@@ -202,7 +202,7 @@ void ConicMoments::add(std::span<const EdgePixel> points) {
     std::array<double, 15> block_sum;
 #if defined(__SSE2__)
     if (lo > -kExactDoubleReach && hi < kExactDoubleReach) {
-      if (pixel_passes::detail::hasAvx2())
+      if (simdAllows(SimdLevel::Avx2))
         exactSumsAvx2(block, ox, oy, block_sum);
       else
         exactSums(block, ox, oy, block_sum);

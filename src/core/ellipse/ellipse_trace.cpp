@@ -234,7 +234,6 @@ __attribute__((target("avx"))) std::size_t traceByFour(const TraceFrame& k, cons
   return i;
 }
 
-bool hasAvx() { return simdLevel() >= SimdLevel::Avx; }
 #endif
 
 template <class Points, class Get>
@@ -258,7 +257,7 @@ void trace(const EllipseFit& fit, const Points& points, double inlier_px, cv::Si
   std::size_t inliers = 0;
   std::size_t i = 0;
 #if defined(__SSE2__)
-  if (hasAvx()) i = traceByFour(frame, table, points, get, total, inliers, traced.data());
+  if (simdAllows(SimdLevel::Avx)) i = traceByFour(frame, table, points, get, total, inliers, traced.data());
   for (; i + 2 <= points.size(); i += 2) traceBlock<2>(frame, table, points, i, get, total, inliers, traced.data());
 #endif
   for (; i < points.size(); ++i) {

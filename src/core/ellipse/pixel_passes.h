@@ -136,12 +136,11 @@ struct Ops {
   template <class T>
   static void store(T* out, V v) { _mm_store_si128(reinterpret_cast<__m128i*>(out), v); }
 };
-#include "core/ellipse/path_sums_pass.h"
+#include "core/ellipse/path_sums_pass.inc"
 }  // namespace sse2
 
 // The same text compiled for AVX2 (called only where the processor has it).
-#pragma GCC push_options
-#pragma GCC target("avx2")
+IMAGEPRO_AVX2_BEGIN
 namespace avx2 {
 struct Ops {
   using V = __m256i;
@@ -161,11 +160,9 @@ struct Ops {
   template <class T>
   static void store(T* out, V v) { _mm256_store_si256(reinterpret_cast<__m256i*>(out), v); }
 };
-#include "core/ellipse/path_sums_pass.h"
+#include "core/ellipse/path_sums_pass.inc"
 }  // namespace avx2
-#pragma GCC pop_options
-
-inline bool hasAvx2() { return simdLevel() == SimdLevel::Avx2; }
+IMAGEPRO_AVX2_END
 #endif
 
 }  // namespace detail
@@ -175,7 +172,7 @@ inline PathSums pathSums(std::span<const EdgePixel> path, int ox, int oy) {
   PathSums s;
   s.bounds = {path[0].x, path[0].x, path[0].y, path[0].y};
 #if defined(__SSE2__)
-  if (detail::hasAvx2())
+  if (simdAllows(SimdLevel::Avx2))
     detail::avx2::sums(path, ox, oy, s);
   else
     detail::sse2::sums(path, ox, oy, s);

@@ -27,7 +27,7 @@ constexpr double kSpotSearchScale = 0.85;  // spots are searched inside 0.85 of 
 constexpr int kSpotBoxGrowPx = 3;
 constexpr double kSpotRimClearancePx = 2.5;  // spot centroids ignore pixels this near the rim
 
-// The spot search's row scan (dark_runs_pass.h), once per vector width: the widest the
+// The spot search's row scan (dark_runs_pass.inc), once per vector width: the widest the
 // processor has is taken at run time (core/common/simd_level.h); every width finds the
 // same runs.
 #if defined(__SSE2__)
@@ -46,11 +46,10 @@ struct Ops {
   }
   static unsigned darkMask(const std::uint8_t* p, const Level& l) { return dark(load(p), l); }
 };
-#include "core/reconstruction/dark_runs_pass.h"
+#include "core/reconstruction/dark_runs_pass.inc"
 }  // namespace sse2
 
-#pragma GCC push_options
-#pragma GCC target("avx2")
+IMAGEPRO_AVX2_BEGIN
 namespace avx2 {
 struct Ops {
   static constexpr int kBlock = 32;
@@ -67,9 +66,9 @@ struct Ops {
   }
   static unsigned darkMask(const std::uint8_t* p, const Level& l) { return dark(load(p), l); }
 };
-#include "core/reconstruction/dark_runs_pass.h"
+#include "core/reconstruction/dark_runs_pass.inc"
 }  // namespace avx2
-#pragma GCC pop_options
+IMAGEPRO_AVX2_END
 #else
 namespace scalar {
 struct Ops {
@@ -95,7 +94,7 @@ struct Ops {
   }
   static unsigned darkMask(const std::uint8_t* p, Level l) { return dark(load(p), l); }
 };
-#include "core/reconstruction/dark_runs_pass.h"
+#include "core/reconstruction/dark_runs_pass.inc"
 }  // namespace scalar
 #endif
 
@@ -106,7 +105,7 @@ struct DarkRowScan {
 
 DarkRowScan darkRowScanForThisProcessor() {
 #if defined(__SSE2__)
-  if (simdLevel() == SimdLevel::Avx2) return {&avx2::darkRuns, &avx2::anyDark};
+  if (simdAllows(SimdLevel::Avx2)) return {&avx2::darkRuns, &avx2::anyDark};
   return {&sse2::darkRuns, &sse2::anyDark};
 #else
   return {&scalar::darkRuns, &scalar::anyDark};
