@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "core/common/contract.h"
 #include "core/edges/edge_list.h"
 
 namespace imagepro {
@@ -16,6 +17,8 @@ struct Paths {
 
   std::size_t pathCount() const { return starts.size() - 1; }
   std::span<const EdgePixel> path(std::size_t i) const {
+    IMAGEPRO_EXPECTS(i + 1 < starts.size(), "path index below pathCount()");
+    IMAGEPRO_EXPECTS(starts[i] <= starts[i + 1] && starts[i + 1] <= pixels.size(), "path bounds inside the pixels");
     return {pixels.data() + starts[i], pixels.data() + starts[i + 1]};
   }
   void clear() {

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <span>
 
+#include "core/common/contract.h"
 #include "core/common/simd_level.h"
 #include "core/edges/edge_list.h"
 
@@ -169,6 +170,7 @@ IMAGEPRO_AVX2_END
 
 // The sums and bounding box of a non-empty path about (ox, oy) in one pass.
 inline PathSums pathSums(std::span<const EdgePixel> path, int ox, int oy) {
+  IMAGEPRO_EXPECTS(!path.empty(), "pathSums of a non-empty path");
   PathSums s;
   s.bounds = {path[0].x, path[0].x, path[0].y, path[0].y};
 #if defined(__SSE2__)

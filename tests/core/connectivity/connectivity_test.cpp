@@ -272,5 +272,19 @@ TEST(Connectivity, VeryWideImagesAreGroupedToo) {
   expectIdentical(cn0, paths, "wide");
 }
 
+// A path index past the end would read beyond the pixels: a build with the core's checks
+// on stops there with the check's message.
+TEST(Connectivity, PathIndexPastTheEndIsAContractViolation) {
+#if defined(NDEBUG) && !defined(IMAGEPRO_CONTRACTS)
+  GTEST_SKIP() << "the checks compile to nothing here (a release build without -DIMAGEPRO_CONTRACTS=ON)";
+#else
+  Paths paths;
+  paths.pixels.assign(3, EdgePixel{});
+  paths.starts = {0, 3};
+  EXPECT_EQ(paths.path(0).size(), 3u);
+  EXPECT_DEATH(paths.path(1), "path index below pathCount");
+#endif
+}
+
 }  // namespace
 }  // namespace imagepro
