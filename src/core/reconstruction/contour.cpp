@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "core/common/contract.h"
 #include "core/reconstruction/feature_geometry.h"
 #include "core/reconstruction/features.h"
 #include "core/segmentation/image_buffer.h"
@@ -401,6 +402,10 @@ Status extractContour(ContourMode mode, const cv::Mat& grey, const cv::Rect& cro
                       const Ellipse& detected, FeatureWorkspace& ws,
                       std::vector<Eigen::Vector2d>& points) {
   points.clear();
+  // The crop was checked against the frame rethresholdCrop saw; reading another, smaller
+  // frame through it would run past its rows.
+  IMAGEPRO_EXPECTS(grey.empty() || (crop & cv::Rect(0, 0, grey.cols, grey.rows)) == crop,
+                   "the crop lies inside the frame rethresholdCrop was given");
   if (grey.empty() || grey.type() != CV_8UC1 || ws.threshold < 0 || ws.crop != crop) return Status::EmptyFrame;
   const double band = contourBandPx(detected);
   if (mode == ContourMode::SubPixel) {

@@ -10,6 +10,7 @@
 #include <immintrin.h>
 #endif
 
+#include "core/common/contract.h"
 #include "core/common/simd_level.h"
 #include "core/reconstruction/feature_geometry.h"
 #include "core/reconstruction/features.h"
@@ -183,6 +184,10 @@ int findRoot(std::vector<SpotRun>& runs, int i) {
 Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& detected,
                     const TargetGeometry& target, FeatureWorkspace& ws, SpotFeatures& spots) {
   spots.candidates = 0;
+  // The crop was checked against the frame rethresholdCrop saw; reading another, smaller
+  // frame through it would run past its rows.
+  IMAGEPRO_EXPECTS(grey.empty() || (crop & cv::Rect(0, 0, grey.cols, grey.rows)) == crop,
+                   "the crop lies inside the frame rethresholdCrop was given");
   if (grey.empty() || grey.type() != CV_8UC1 || ws.threshold < 0 || ws.crop != crop) return Status::EmptyFrame;
   const EllipseForm inner(detected, kSpotSearchScale);
   // Spots are cut at the middle of the crop's two class means rather than at the threshold

@@ -250,6 +250,22 @@ TEST_F(FeatureTest, TooFewPointsOnABlackCrop) {
 
 // Spot centroids against the exact image of each spot's centre of area (the centre of the
 // spot's image conic), for poses across the range.
+// The crop belongs to the frame rethresholdCrop saw: a smaller frame handed to the contour
+// or the spot search would be read past its rows. A build with the core's checks on stops.
+TEST_F(FeatureTest, AFrameSmallerThanTheCropIsAContractViolation) {
+#if defined(NDEBUG) && !defined(IMAGEPRO_CONTRACTS)
+  GTEST_SKIP() << "the checks compile to nothing here (a release build without -DIMAGEPRO_CONTRACTS=ON)";
+#else
+  const Pose pose = frontal();
+  const Ellipse e = seenRimEllipse(cam, target, pose);
+  ASSERT_EQ(prepare(pose, e), Status::Ok);
+  const cv::Mat smaller = image(cv::Rect(0, 0, crop.x + crop.width / 2, crop.y + crop.height / 2)).clone();
+  SpotFeatures spots;
+  EXPECT_DEATH(extractSpots(smaller, crop, e, target, ws, spots), "the crop lies inside the frame");
+  EXPECT_DEATH(extractContour(ContourMode::SubPixel, smaller, crop, e, ws, points), "the crop lies inside the frame");
+#endif
+}
+
 TEST_F(FeatureTest, SpotCentroidsAndIdentity) {
   for (RenderMode mode : {RenderMode::Grey, RenderMode::Binary}) {
     scene.mode = mode;
