@@ -84,6 +84,10 @@ namespace avx2 {
 
 bool hasAvx2() { return simdLevel() == SimdLevel::Avx2; }
 #else
+// Other compilers (clang: the fuzz build) take the SSE2 rows.
+namespace avx2 {
+using sse2::laplaceRows;
+}  // namespace avx2
 bool hasAvx2() { return false; }
 #endif
 #endif
