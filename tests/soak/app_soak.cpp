@@ -23,9 +23,9 @@
 #include <string>
 #include <vector>
 
-#include "app/main_window.h"
-#include "app/source_kind.h"
-#include "app/worker.h"
+#include "app/main_window/main_window.h"
+#include "app/worker/source_kind.h"
+#include "app/worker/worker.h"
 #include "core/pipeline/data_out.h"
 #include "core/settings/settings.h"
 
