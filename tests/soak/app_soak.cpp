@@ -1,8 +1,8 @@
 // Soak of the application: ImagePro on the Virtual source at 100 frames/s, writing
 // data out, while every few seconds the next method list of the control panel (each
 // combo box of the window whose name ends in "Method" or "Mode") moves to its next entry. Resident
-// memory is sampled every second. At the end: the memory's slope after the warm-up
-// (least squares), and the worker's frame counter against the data-out rows.
+// memory is sampled every second (DIR/rss.txt). At the end: the memory's slope after the
+// warm-up (least squares), and the worker's frame counter against the data-out rows.
 //
 //   app_soak [--seconds N] [--switch-ms M] [--max-slope-kb-per-min K] [--out DIR]
 //
@@ -138,6 +138,10 @@ int main(int argc, char** argv) {
     rows = 0;
     while (!f.atEnd()) rows += !f.readLine().isEmpty();
     --rows;  // the header
+  }
+  {
+    std::ofstream samples((out + QStringLiteral("/rss.txt")).toStdString());  // minutes, KB: for a plot
+    for (std::size_t i = 0; i < t_min.size(); ++i) samples << t_min[i] << ' ' << rss_kb[i] << '\n';
   }
   // After the warm-up: the first 30 s or the first tenth, the longer.
   const double warm = std::max(0.5, t_min.empty() ? 0.0 : t_min.back() / 10);
