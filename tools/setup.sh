@@ -6,15 +6,29 @@
 #                         (without a display: a headless demo that prints poses)
 #   tools/setup.sh test   build, then run every test through ctest
 #   tools/setup.sh build  build only
+#   tools/setup.sh sanitize  AddressSanitizer + UndefinedBehaviorSanitizer build (build-sanitize),
+#                         preconditions checked, then the test suite; SANITIZE_TESTS=core-cli
+#                         leaves out the application and its tests (docs/reliability.md)
+#   tools/setup.sh tsan   ThreadSanitizer build (build-tsan), then the tests of the threads:
+#                         the worker and the GUI (test_app), the engine, data out
+#   tools/setup.sh fuzz   clang build of the libFuzzer targets of tests/fuzz (build-fuzz);
+#                         tools/fuzz.sh runs them
 #
-# Environment: BUILD_DIR (default: build), JOBS (default: 2), IMAGEPRO_WERROR (ON in CI).
+# Environment: BUILD_DIR (default: build, or the mode's own), JOBS (default: 2),
+# IMAGEPRO_WERROR (ON in CI).
 set -euo pipefail
 
 mode="${1:-run}"
-case "$mode" in run|test|build) ;; *) echo "usage: tools/setup.sh run|test|build" >&2; exit 2 ;; esac
+case "$mode" in run|test|build|sanitize|tsan|fuzz) ;; *) echo "usage: tools/setup.sh run|test|build|sanitize|tsan|fuzz" >&2; exit 2 ;; esac
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build_dir="${BUILD_DIR:-$root/build}"
+case "$mode" in
+  sanitize) default_build="$root/build-sanitize" ;;
+  tsan) default_build="$root/build-tsan" ;;
+  fuzz) default_build="$root/build-fuzz" ;;
+  *) default_build="$root/build" ;;
+esac
+build_dir="${BUILD_DIR:-$default_build}"
 jobs="${JOBS:-2}"
 
 # libqt6opengl6-dev is only recommended by qt6-base-dev, but Qt6Charts' CMake package
@@ -29,6 +43,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   opencv-doc
 )
+# libFuzzer comes with clang's runtime libraries.
+[ "$mode" = fuzz ] && packages+=(clang libclang-rt-14-dev libfuzzer-14-dev)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -48,10 +64,34 @@ fi
 werror="${IMAGEPRO_WERROR:-OFF}"
 [ "${CI:-}" = "true" ] && werror=ON
 
+# The sanitizer modes' options and what they build and test (CMakeLists.txt: IMAGEPRO_SANITIZE).
+mode_options=()
+targets=()
+case "$mode" in
+  sanitize) mode_options=(-DIMAGEPRO_SANITIZE=address,undefined) ;;
+  tsan)
+    mode_options=(-DIMAGEPRO_SANITIZE=thread)
+    targets=(--target test_app test_pipeline)
+    ;;
+  fuzz)
+    # The vector code's GCC target pragmas mean nothing to clang: the whole build takes
+    # the AVX2 instructions they ask for (the fuzzing machine has them), and clang's
+    # warnings about them are no error here (the gcc builds keep -Werror).
+    mode_options=(-DCMAKE_CXX_COMPILER=clang++ "-DCMAKE_CXX_FLAGS=-mavx2 -mbmi -mbmi2" -DIMAGEPRO_WERROR=OFF
+                  -DIMAGEPRO_SANITIZE=address,undefined,fuzzer-no-link -DIMAGEPRO_FUZZ=ON
+                  -DIMAGEPRO_BUILD_APP=OFF -DIMAGEPRO_BUILD_TESTS=OFF)
+    targets=(--target imagepro_fuzz_targets)
+    ;;
+esac
+sanitize_tests="${SANITIZE_TESTS:-all}"
+if [ "$mode" = sanitize ] && [ "$sanitize_tests" = core-cli ]; then
+  mode_options+=(-DIMAGEPRO_BUILD_APP=OFF)
+fi
+
 echo "== configuring $build_dir"
-cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DIMAGEPRO_WERROR="$werror" >/dev/null
+cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DIMAGEPRO_WERROR="$werror" "${mode_options[@]}" >/dev/null
 echo "== building with $jobs jobs"
-cmake --build "$build_dir" -j "$jobs"
+cmake --build "$build_dir" -j "$jobs" "${targets[@]}"
 
 case "$mode" in
   build) ;;
@@ -60,6 +100,24 @@ case "$mode" in
     cd "$build_dir"
     QT_QPA_PLATFORM=offscreen ctest --output-on-failure -j "$jobs" --timeout 900
     ;;
+  sanitize)
+    echo "== running the test suite under AddressSanitizer and UndefinedBehaviorSanitizer ($sanitize_tests)"
+    cd "$build_dir"
+    # The soak's memory slope means nothing under ASan (freed memory waits in quarantine).
+    # halt_on_error: any report fails its test; Qt's and fontconfig's caches live to
+    # the process's end, which LeakSanitizer would take for leaks.
+    ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=1:detect_stack_use_after_return=1" \
+      LSAN_OPTIONS="suppressions=$root/tools/sanitizer/lsan.supp:print_suppressions=0" \
+      UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
+      QT_QPA_PLATFORM=offscreen ctest --output-on-failure -j "$jobs" --timeout 1800 -LE soak
+    ;;
+  tsan)
+    echo "== running the threads' tests under ThreadSanitizer"
+    cd "$build_dir"
+    TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$root/tools/sanitizer/tsan.supp" \
+      QT_QPA_PLATFORM=offscreen ctest --output-on-failure -j "$jobs" --timeout 1800 -R '^(test_app|Engine|DataOut|FrameClock|StageChain)'
+    ;;
+  fuzz) echo "== fuzz targets in $build_dir/tests/fuzz (tools/fuzz.sh runs them)" ;;
   run)
     if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
       exec "$build_dir/src/app/imagepro" --source virtual

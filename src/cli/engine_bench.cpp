@@ -32,6 +32,15 @@ long peakMemoryKb() {
 
 const char* prefix(BenchKind kind) { return kind == BenchKind::Real ? "real_" : ""; }
 
+// Allocations per frame to two decimals, or `uncounted` in a build that counts none (a
+// sanitizer build): a 0 there would claim what was not measured.
+std::string allocationsPerFrame(const BenchRun& run, const char* uncounted) {
+  if (!allocationCountingAvailable()) return uncounted;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", run.allocationsPerFrame());
+  return buf;
+}
+
 // A kind's keys, prefixed "real_" for the real scenes: rates, poses found, allocations.
 std::string jsonKind(const BenchKindRun& k) {
   const char* p = prefix(k.kind);
@@ -52,9 +61,10 @@ std::string jsonKind(const BenchKindRun& k) {
     out += buf;
   }
   std::snprintf(buf, sizeof buf,
-                ", \"%sfull_frame_allocations_per_frame\": %.3f, \"%stracked_allocations_per_frame\": %.3f, "
+                ", \"%sfull_frame_allocations_per_frame\": %s, \"%stracked_allocations_per_frame\": %s, "
                 "\"%stracked_region_fraction\": %.4f",
-                p, k.full.allocationsPerFrame(), p, k.tracked.allocationsPerFrame(), p, k.tracked.mean_region_fraction);
+                p, allocationsPerFrame(k.full, "null").c_str(), p, allocationsPerFrame(k.tracked, "null").c_str(), p,
+                k.tracked.mean_region_fraction);
   return out + buf;
 }
 
@@ -145,8 +155,8 @@ void printBenchText(const BenchKindRun& r, cv::Size size) {
                 size.width, size.height, r.full.frames, kRealBenchVideoFrames);
   std::printf("%-26s %12s %10s %14s %16s\n", "pipeline", "frames/s", "found", "mean |dT| mm", "allocs/frame");
   auto row = [](const std::string& name, const BenchRun& run) {
-    std::printf("%-26s %12.0f %6d/%-4d %14.2f %16.2f\n", name.c_str(), run.hz, run.found, run.frames,
-                run.mean_position_error_mm, run.allocationsPerFrame());
+    std::printf("%-26s %12.0f %6d/%-4d %14.2f %16s\n", name.c_str(), run.hz, run.found, run.frames,
+                run.mean_position_error_mm, allocationsPerFrame(run, "n/a").c_str());
   };
   row("ImagePro full frame", r.full);
   row("ImagePro tracked", r.tracked);

@@ -71,6 +71,23 @@ TEST(CliBench, WithoutPhotographsOneLineAndTheVirtualKindAlone) {
   EXPECT_FALSE(j.contains("real_full_frame_hz"));
   EXPECT_FALSE(j.at("resolutions").at(0).contains("real_frames"));
   EXPECT_NE(json.err.find("real scenes: left out"), std::string::npos) << json.err;
+
+  // A build that counts no allocations (a sanitizer build) says so once and shows
+  // "n/a" and null where the counts would be; any other build shows the counts.
+  const bool counted = text.err.find("does not count heap allocations") == std::string::npos;
+  for (const std::string& line : lines(text.out))
+    if (line.rfind("ImagePro ", 0) == 0) {
+      const std::string last = line.substr(line.find_last_of(' ') + 1);
+      if (counted)
+        EXPECT_NO_THROW(std::stod(last)) << line;
+      else
+        EXPECT_EQ(last, "n/a") << line;
+    }
+  for (const char* key : {"full_frame_allocations_per_frame", "tracked_allocations_per_frame"}) {
+    const auto& v = j.at("resolutions").at(0).at(key);
+    EXPECT_EQ(v.is_number(), counted) << key << ": " << v;
+    EXPECT_EQ(v.is_null(), !counted) << key << ": " << v;
+  }
 }
 
 }  // namespace

@@ -90,6 +90,40 @@ bool syncFolder(const fs::path& dir, std::string& why) {
   ::close(fd);
   return ok;
 }
+
+// Keeps the file about to be replaced as `backup`, which is itself replaced atomically:
+// a hard link to the old file under a temporary name is renamed over the backup, so a
+// kill leaves the former backup or the new one, whole (a copy killed half-way left half
+// a file). Where no link can be made (another file system, FAT) the old file is copied
+// to the temporary name instead.
+bool keepBackup(const fs::path& target, const fs::path& backup, std::string& why) {
+  const fs::path dir = backup.has_parent_path() ? backup.parent_path() : fs::path(".");
+  const std::string name = backup.filename().string();
+  removeStaleTemporaries(dir, name);
+  std::string tmp;
+  const int fd = createTemporary(dir, name, tmp);
+  if (fd < 0) {
+    why = reason();
+    return false;
+  }
+  ::close(fd);
+  ::unlink(tmp.c_str());  // the name is reserved by our pid and random part; link() needs it free
+  if (::link(target.c_str(), tmp.c_str()) != 0) {
+    std::error_code ec;
+    fs::copy_file(target, tmp, fs::copy_options::overwrite_existing, ec);
+    if (ec) {
+      why = ec.message();
+      ::unlink(tmp.c_str());
+      return false;
+    }
+  }
+  const bool renamed = std::rename(tmp.c_str(), backup.c_str()) == 0;
+  if (!renamed) why = reason();
+  // rename() leaves both names when they are links to one file (a write killed after
+  // its backup leaves the backup and the file the same file): the temporary goes.
+  ::unlink(tmp.c_str());
+  return renamed;
+}
 }  // namespace
 
 std::string atomicTemporaryPrefix(const std::string& file_name, long pid) {
@@ -143,8 +177,8 @@ bool writeFileAtomically(const std::string& path, std::string_view content, std:
   if (::close(fd) != 0) return fail("cannot flush " + path + ": " + reason());
   std::error_code ec;
   if (keep_backup && fs::exists(target, ec)) {
-    fs::copy_file(target, fs::path(path + ".bak"), fs::copy_options::overwrite_existing, ec);
-    if (ec) return fail("cannot keep a backup of " + path + ": " + ec.message());
+    std::string why;
+    if (!keepBackup(target, fs::path(path + ".bak"), why)) return fail("cannot keep a backup of " + path + ": " + why);
   }
   if (std::rename(tmp.c_str(), target.c_str()) != 0) return fail("cannot replace " + path + ": " + reason());
   std::string why;

@@ -14,7 +14,8 @@
 namespace imagepro {
 
 // Returns true on success; on failure `error` names the file and the reason.
-// With keep_backup, an existing file is first copied to "<path>.bak".
+// With keep_backup, an existing file is first kept as "<path>.bak", which is replaced
+// atomically too (a hard link to the old file, or a copy where links cannot be made).
 bool writeFileAtomically(const std::string& path, std::string_view content, std::string& error,
                          bool keep_backup = false);
 
