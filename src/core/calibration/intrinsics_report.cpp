@@ -11,8 +11,8 @@ namespace imagepro {
 namespace {
 
 std::string percent(double f) {
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "%.0f %%", 100.0 * f);
+  char buf[24];
+  std::snprintf(buf, sizeof buf, f < 0.1 ? "%.2f %%" : "%.0f %%", 100.0 * f);
   return buf;
 }
 
@@ -105,18 +105,19 @@ std::vector<CalibrationWarning> intrinsicsWarnings(const IntrinsicsResult& r, co
     w.push_back({"NarrowViewAngles", "no view is tilted by more than " + std::to_string(static_cast<int>(steepest)) +
                                          " deg: the focal length is poorly separated from the distance; add views "
                                          "with the pattern turned 30-50 deg"});
-  // Tilt axes: the normals' image-plane directions of the tilted views (a line, so mod 180 deg).
-  double lo = 1e9, hi = -1e9;
-  int tilted = 0;
+  // Tilt axes: the normals' image-plane directions of the tilted views, as lines (mod 180
+  // deg); their spread is 180 deg less the widest gap between neighbours.
+  std::vector<double> axes;
   for (const IntrinsicsView& v : r.views)
-    if (ok(v.status) && v.tilt_deg > 10.0) {
-      double a = std::atan2(v.tilt_axis.y(), v.tilt_axis.x()) * 180.0 / M_PI;
-      if (a < 0) a += 180.0;
-      lo = std::min(lo, a), hi = std::max(hi, a), ++tilted;
-    }
-  if (tilted >= 2 && (hi - lo < 30.0 || hi - lo > 150.0))
-    w.push_back({"OneTiltAxis", "every tilted view turns the pattern about the same axis: add views turned about "
-                                "the other (left-right as well as up-down)"});
+    if (ok(v.status) && v.tilt_deg > 10.0) axes.push_back(std::fmod(std::atan2(v.tilt_axis.y(), v.tilt_axis.x()) * 180.0 / M_PI + 360.0, 180.0));
+  std::sort(axes.begin(), axes.end());
+  if (axes.size() >= 2) {
+    double gap = axes.front() + 180.0 - axes.back();
+    for (size_t i = 1; i < axes.size(); ++i) gap = std::max(gap, axes[i] - axes[i - 1]);
+    if (180.0 - gap < 30.0)
+      w.push_back({"OneTiltAxis", "every tilted view turns the pattern about the same axis: add views turned about "
+                                  "the other (left-right as well as up-down)"});
+  }
   if (r.views_used < kRecommendedViews)
     w.push_back({"FewViews", std::to_string(r.views_used) + " views used: 4 to 10 views, tilted differently, "
                                                            "determine the intrinsics better"});
