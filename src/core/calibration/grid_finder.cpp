@@ -297,8 +297,8 @@ Status findDotGrid(const cv::Mat& grey, const DotGridSpec& spec, GridDetection& 
   std::vector<ObservedSpot> spots;
   // White is kFlatWhite everywhere now: a fixed threshold at 0.6 of it (an automatic one
   // splits the white itself where the sheet's edge leaves it brighter).
-  const Status s = findPatternSpots(flat, ThresholdOptions{ThresholdMethod::Manual, static_cast<int>(0.6 * kFlatWhite)},
-                                    ws, spots);
+  const Status s = findPatternSpots(
+      flat, grey, ThresholdOptions{ThresholdMethod::Manual, static_cast<int>(0.6 * kFlatWhite)}, ws, spots);
   if (!ok(s)) return out.status = Status::GridNotFound;
   std::vector<Candidate> c;
   c.reserve(spots.size());

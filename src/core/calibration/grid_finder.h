@@ -4,7 +4,9 @@
 //  1. Uneven light is flattened: each pixel is divided by the local white level, the
 //     grey closing (dark detail removed) over a window wider than a dot, smoothed.
 //  2. The dots are the project's own pattern spots (spots.h: dark components of
-//     plausible size, centred by their darkness-weighted centroid) on the flattened image.
+//     plausible size, centred by their darkness-weighted centroid), cut from the
+//     flattened image and weighed on the image as seen (dividing by the estimated light,
+//     wrong near the sheet's edge, moved the centres enough to bias fx by 0.1 %).
 //  3. The grid among them:
 //     - OpenCV's grids: cv::findCirclesGrid on those centres (no blob detector of its
 //       own, so the same names and order as OpenCV gives them), the whole grid or nothing;
