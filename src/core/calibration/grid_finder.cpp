@@ -16,6 +16,9 @@ namespace imagepro {
 namespace {
 
 constexpr double kFlatWhite = 230.0;
+// A dot may cover up to this fraction of the image (a small grid close up: 4 x 5 dots of
+// 20 mm filling a 640x480 image are about 55 px across, 0.8 %).
+constexpr double kMaxDotAreaFraction = 0.04;
 // A lattice step may differ from the one before by this fraction of the shorter step.
 constexpr double kStepTolerance = 0.3;
 
@@ -271,8 +274,9 @@ void dotsFromLattice(const std::vector<Candidate>& c, const DotGridSpec& spec, c
 }  // namespace
 
 cv::Mat flattenIllumination(const cv::Mat& grey) {
-  // Wider than any dot of a grid that fits the image several times over.
-  const int k = std::max(15, std::min(grey.cols, grey.rows) / 6) | 1;
+  // Wider than any dot the finder takes (kMaxDotAreaFraction: a quarter of the image's
+  // height across at most).
+  const int k = std::max(15, std::min(grey.cols, grey.rows) / 4) | 1;
   cv::Mat white;
   cv::morphologyEx(grey, white, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, k)));
   cv::blur(white, white, cv::Size(k, k));
@@ -298,7 +302,8 @@ Status findDotGrid(const cv::Mat& grey, const DotGridSpec& spec, GridDetection& 
   // White is kFlatWhite everywhere now: a fixed threshold at 0.6 of it (an automatic one
   // splits the white itself where the sheet's edge leaves it brighter).
   const Status s = findPatternSpots(
-      flat, grey, ThresholdOptions{ThresholdMethod::Manual, static_cast<int>(0.6 * kFlatWhite)}, ws, spots);
+      flat, grey, ThresholdOptions{ThresholdMethod::Manual, static_cast<int>(0.6 * kFlatWhite)}, ws, spots,
+      kMaxDotAreaFraction);
   if (!ok(s)) return out.status = Status::GridNotFound;
   std::vector<Candidate> c;
   c.reserve(spots.size());

@@ -105,15 +105,15 @@ TEST_P(IntrinsicsRoundTrip, RecoversTheCamera) {
               c.name, found, r.views.size(), r.rms_px, 100 * (r.fx / truth.fu() - 1), 100 * (r.fy / truth.fv() - 1),
               r.cx - truth.u0(), r.cy - truth.v0(), r.distortion.k1, c.lens.k1, r.distortion.k2, c.lens.k2, field,
               r.model_fit_rms_px);
-  // Measured (docs/calibration.md): focal lengths within 0.03 %, principal point within
-  // 0.25 px, fields 0.007-0.015 px RMS in even light and up to 0.064 px under the uneven
+  // Measured (docs/calibration.md): focal lengths within 0.05 %, principal point within
+  // 0.3 px, fields 0.006-0.015 px RMS in even light and up to 0.08 px under the uneven
   // light, reprojection 0.007-0.015 px.
   EXPECT_NEAR(r.fx / truth.fu(), 1.0, 1e-3);
   EXPECT_NEAR(r.fy / truth.fv(), 1.0, 1e-3);
   EXPECT_NEAR(r.cx, truth.u0(), 0.5);
   EXPECT_NEAR(r.cy, truth.v0(), 0.5);
   EXPECT_NEAR(r.distortion.k1, c.lens.k1, 0.04 * std::abs(c.lens.k1));
-  EXPECT_LT(field, c.uneven ? 0.08 : 0.03);
+  EXPECT_LT(field, c.uneven ? 0.1 : 0.03);
   EXPECT_LT(r.rms_px, 0.03);
   EXPECT_LT(r.model_fit_rms_px, 0.01);
   // The 60 deg view is among them.
@@ -125,6 +125,9 @@ TEST_P(IntrinsicsRoundTrip, RecoversTheCamera) {
 INSTANTIATE_TEST_SUITE_P(
     Grids, IntrinsicsRoundTrip,
     ::testing::Values(Case{"asymmetric, thesis lens", asymmetricSpec(), kThesisCameraDistortion, false, 420.0},
+                      // The grid of the photographs: 4 x 5 dots of 20 mm, s = 30 mm, filling the image.
+                      Case{"asymmetric 4 x 5, 20 mm dots, webcam lens, uneven light",
+                           spec(DotGridKind::AsymmetricCircles, 4, 5, 30.0, 20.0), testing::kWebcamLens, true, 400.0},
                       Case{"asymmetric, webcam lens, uneven light", asymmetricSpec(), testing::kWebcamLens, true, 420.0},
                       Case{"symmetric, webcam lens, uneven light", symmetricSpec(), testing::kWebcamLens, true, 500.0},
                       Case{"symmetric, thesis lens", symmetricSpec(), kThesisCameraDistortion, false, 500.0},
