@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/cmd_calibrate_intrinsics.h"
 #include "cli/command.h"
 #include "cli/image_inputs.h"
 #include "core/calibration/calibrate.h"
@@ -34,6 +35,7 @@ json resultJson(const CalibrationResult& r) {
 }
 
 int run(const Args& args) {
+  if (args.has("intrinsics")) return runIntrinsicCalibration(args);
   args.rejectUnknown({"out", "format"});
   const std::string format = args.valueOr("format", "text");
   if (format != "text" && format != "json") throw UsageError("--format: \"" + format + "\" is not text or json");
@@ -116,7 +118,7 @@ int run(const Args& args) {
 
 const CommandRegistration kRegistration{{
     "calibrate",
-    "lens distortion from one to four images of the calibration pattern (thesis 4.6)",
+    "lens distortion from the thesis's pattern (thesis 4.6), or --intrinsics from a dot grid",
     "usage: imagepro-cli calibrate IMAGES... --out FILE [--config FILE] [--format text|json]\n\n"
     "IMAGES are image files, folders (their images in natural order) or lists of paths\n"
     "(text files, one path a line), one to four images in all.\n"
@@ -135,8 +137,8 @@ const CommandRegistration kRegistration{{
     "The matched spots must reach far enough towards the image's corners, else PoorCoverage:\n"
     "move the pattern closer or print it larger (docs/calibration.md gives the distances).\n"
     "Exit code 1 when the calibration fails (its error is named), 2 for a usage error\n"
-    "(e.g. more than four images).",
-    {},
+    "(e.g. more than four images).\n\n" + std::string(kIntrinsicCalibrationUsage),
+    {"intrinsics", "fit-k3"},
     run,
 }};
 

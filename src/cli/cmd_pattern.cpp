@@ -22,7 +22,7 @@ std::string lowerExtension(const std::string& path) {
 }
 
 int run(const Args& args) {
-  args.rejectUnknown({"out", "paper", "dpi"});
+  args.rejectUnknown({"out", "paper", "dpi", "pattern", "columns", "rows", "spacing-mm", "dot-diameter-mm", "config"});
   if (!args.positionals().empty()) throw UsageError("unexpected argument \"" + args.positionals().front() + "\"");
   const auto out = args.value("out");
   if (!out) throw UsageError("--out FILE is required (.pdf, .svg or .png)");
@@ -31,16 +31,31 @@ int run(const Args& args) {
     throw UsageError("--out: \"" + *out + "\" does not end in .pdf, .svg or .png");
   const std::string paperArg = args.valueOr("paper", "A4");
   Paper paper = Paper::A4;
-  if (paperArg == "A4" || paperArg == "a4") paper = Paper::A4;
-  else if (paperArg == "A3" || paperArg == "a3") paper = Paper::A3;
-  else throw UsageError("--paper: \"" + paperArg + "\" is not A4 or A3");
+  if (!parsePaper(paperArg, paper)) throw UsageError("--paper: \"" + paperArg + "\" is not A4, Letter or A3");
   if (args.has("dpi") && ext != "png") throw UsageError("--dpi applies to PNG output only");
   const double dpi = args.number("dpi", 300.0);
   if (!(dpi >= 25.0 && dpi <= 2400.0)) throw UsageError("--dpi must be 25..2400");
 
-  const Settings settings = loadConfig(args);
+  Settings settings = loadConfig(args);
+  const std::string kindArg = args.valueOr("pattern", "thesis");
+  const auto kind = parseDotGridKind(kindArg);
+  if (!kind) throw UsageError("--pattern: \"" + kindArg + "\" is not thesis, symmetric-circles or asymmetric-circles");
+  if (*kind != DotGridKind::Thesis)
+    for (const char* required : {"columns", "rows", "spacing-mm"})
+      if (!args.has(required)) throw UsageError(std::string("--") + required + " is required for --pattern " + kindArg);
+  // The thesis pattern: the settings' unless the command line says otherwise.
+  DotGridSpec spec;
+  spec.kind = *kind;
+  spec.columns = args.integer("columns", settings.pattern.columns);
+  spec.rows = args.integer("rows", settings.pattern.rows);
+  spec.spacing_mm = args.number("spacing-mm", settings.pattern.spot_spacing_mm);
+  spec.dot_diameter_mm =
+      args.number("dot-diameter-mm", *kind == DotGridKind::Thesis ? 2.0 * settings.pattern.spot_radius_mm : 0.0);
+  spec.card_size_mm = settings.pattern.card_size_mm;
+  spec.target = settings.target;
   PatternPage page;
-  layoutPatternPage(settings.pattern, settings.target, paper, page);
+  std::string layoutError;
+  if (!layoutDotGridPage(spec, paper, page, layoutError)) throw UsageError("InvalidPattern: " + layoutError);
   std::string content;
   if (ext == "svg") {
     content = patternPageSvg(page);
@@ -52,9 +67,10 @@ int run(const Args& args) {
   }
   std::string error;
   if (!writeFileAtomically(*out, content, error)) throw InputError(error);
-  std::printf("wrote %s: %s landscape, %d x %d grid spots (%d drawn) %g mm apart, card %g mm", out->c_str(),
-              paperName(paper), page.grid_columns, page.grid_rows, page.grid_spots, settings.pattern.spot_spacing_mm,
-              settings.pattern.card_size_mm);
+  std::printf("wrote %s: %s, %s landscape, %d x %d grid spots (%d drawn) %g mm apart, dots %g mm", out->c_str(),
+              std::string(dotGridKindName(spec.kind)).c_str(), paperName(paper), page.grid_columns, page.grid_rows,
+              page.grid_spots, spec.spacing_mm, dotDiameterMm(spec));
+  if (spec.kind == DotGridKind::Thesis) std::printf(", card %g mm", spec.card_size_mm);
   if (ext == "png") std::printf(", %g dpi", dpi);
   std::printf("\nprint it at actual size (100 %%, no fitting to the page) and check the 100 mm bar\n");
   return 0;
@@ -63,12 +79,18 @@ int run(const Args& args) {
 const CommandRegistration kRegistration{{
     "pattern",
     "write the printable calibration pattern (PDF, SVG or PNG) at true scale",
-    "usage: imagepro-cli pattern --out FILE.pdf|FILE.svg|FILE.png [--paper A4|A3] [--dpi N] [--config FILE]\n\n"
-    "Writes the calibration pattern of thesis 4.3 for the settings' \"pattern\" and \"target\":\n"
-    "the target on its black card at the centre of a landscape page, and every grid spot that\n"
-    "fits inside a 10 mm margin, with the dimensions and a 100 mm scale bar printed below.\n"
+    "usage: imagepro-cli pattern --out FILE.pdf|FILE.svg|FILE.png [--paper A4|Letter|A3] [--dpi N]\n"
+    "         [--pattern thesis|symmetric-circles|asymmetric-circles] [--columns C] [--rows R]\n"
+    "         [--spacing-mm S] [--dot-diameter-mm D] [--config FILE]\n\n"
+    "Writes a calibration pattern at true scale on a landscape page, with its parameters and a\n"
+    "100 mm scale bar printed below. thesis (default): the pattern of thesis 4.3 for the\n"
+    "settings' \"pattern\" and \"target\" (the options override its grid), the target on its\n"
+    "black card at the centre and every grid spot that fits inside a 10 mm margin.\n"
+    "symmetric-circles, asymmetric-circles: OpenCV's circle grids, whole, C x R = points per\n"
+    "row x rows (OpenCV's pattern size), dot diameter s/2 unless given; the calibrate command\n"
+    "that takes them is printed on the sheet (calibrate --intrinsics).\n"
     "  --out FILE    .pdf (vector), .svg (vector, mm units) or .png; written atomically\n"
-    "  --paper P     A4 (default) or A3\n"
+    "  --paper P     A4 (default), Letter or A3\n"
     "  --dpi N       PNG resolution, stored in the file (default 300)",
     {},
     run,

@@ -1,12 +1,15 @@
 // imagepro-cli settings: prints the effective settings JSON (the defaults, or
 // --config FILE checked and completed with defaults), or writes it with --out; with
-// --methods-markdown, the user manual's tables of the methods and options instead.
+// --methods-markdown, the user manual's tables of the methods and options instead. Takes
+// the camera from OpenCV's camera file, or writes the camera as one
+// (calibration/opencv_camera_file.h).
 #include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "cli/command.h"
+#include "core/calibration/opencv_camera_file.h"
 
 namespace imagepro::cli {
 namespace {
@@ -49,16 +52,31 @@ std::string methodsMarkdown() {
 }
 
 int run(const Args& args) {
-  args.rejectUnknown({"out", "methods-markdown"});
+  args.rejectUnknown({"out", "methods-markdown", "import-opencv-camera", "export-opencv-camera"});
   if (args.has("methods-markdown")) {
     if (args.has("out") || args.has("config")) throw UsageError("--methods-markdown takes no other option");
     std::fputs(methodsMarkdown().c_str(), stdout);
     return 0;
   }
-  const Settings settings = loadConfig(args);
+  Settings settings = loadConfig(args);
+  std::string error;
+  if (const auto in = args.value("import-opencv-camera")) {
+    OpenCvCamera oc;
+    if (!readOpenCvCamera(*in, oc, error)) throw InputError(error);
+    double fit = 0.0;
+    applyOpenCvCamera(oc, settings.camera, &fit);
+    std::fprintf(stderr, "camera from %s: %dx%d, d0 %.4f mm for %g mm pixels; its distortion in this project's model "
+                 "within %.4f px RMS\n",
+                 in->c_str(), oc.width, oc.height, settings.camera.image_plane_distance_mm,
+                 settings.camera.pixel_size_mm[0], fit);
+  }
+  if (const auto exportPath = args.value("export-opencv-camera")) {
+    if (!writeOpenCvCamera(*exportPath, openCvCameraOf(settings.camera), error)) throw InputError(error);
+    std::fprintf(stderr, "wrote %s\n", exportPath->c_str());
+    if (!args.has("out")) return 0;
+  }
   const std::string text = settingsToJson(settings);
   if (const auto out = args.value("out")) {
-    std::string error;
     if (!ok(saveSettings(*out, settings, error))) throw InputError(error);
     std::fprintf(stderr, "wrote %s\n", out->c_str());
   } else {
@@ -70,10 +88,16 @@ int run(const Args& args) {
 const CommandRegistration kRegistration{{
     "settings",
     "print or write the settings JSON (defaults, or --config checked and completed)",
-    "usage: imagepro-cli settings [--config FILE] [--out FILE]\n"
+    "usage: imagepro-cli settings [--config FILE] [--import-opencv-camera FILE] [--export-opencv-camera FILE]\n"
+    "                             [--out FILE]\n"
     "       imagepro-cli settings --methods-markdown\n\n"
     "Prints the effective settings: the defaults, or FILE with every missing key\n"
     "filled in. A malformed FILE is reported with the key at fault.\n"
+    "  --import-opencv-camera FILE  take the camera from OpenCV's camera file (YAML/JSON:\n"
+    "                      camera_matrix, distortion_coefficients, image_width, image_height):\n"
+    "                      d0 for the settings' pixel size, the distortion fitted to this\n"
+    "                      project's model\n"
+    "  --export-opencv-camera FILE  write the camera as OpenCV's camera file (JSON for .json)\n"
     "  --out FILE          write to FILE (atomically) instead of printing\n"
     "  --methods-markdown  print instead the user manual's tables of every method and\n"
     "                      option list: for each value its name, its key in the settings\n"

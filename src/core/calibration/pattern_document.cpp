@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <climits>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 
@@ -74,19 +75,52 @@ void putBigEndian(std::vector<std::uint8_t>& out, std::uint32_t v) {
   for (int shift = 24; shift >= 0; shift -= 8) out.push_back(static_cast<std::uint8_t>(v >> shift));
 }
 
+// Three lines of text on the left of the band below the pattern, the scale bar on its right.
+void addTextBand(PatternPage& page, const std::array<std::string, 3>& lines) {
+  const double x0 = kPageMarginMm, x1 = page.width_mm - kPageMarginMm;
+  const double y1 = page.height_mm - kPageMarginMm - kTextBandMm;
+  const double line = 1.5 * kTextSizeMm;
+  const double ty = y1 + 0.5 * kTextBandMm - line + 0.35 * kTextSizeMm;
+  for (int i = 0; i < 3; ++i) page.texts.push_back({x0, ty + i * line, kTextSizeMm, lines[i]});
+  const double barX = x1 - kScaleBarMm, barY = y1 + 0.5 * kTextBandMm + 1.0;
+  page.rects.push_back({barX, barY, kScaleBarMm, 0.8});
+  page.rects.push_back({barX, barY - 2.5, 0.4, 3.3});
+  page.rects.push_back({x1 - 0.4, barY - 2.5, 0.4, 3.3});
+  page.texts.push_back({barX + 0.5 * kScaleBarMm - 4.0, barY - 1.5, kTextSizeMm, g(kScaleBarMm) + " mm"});
+}
+
 }  // namespace
 
 void paperSizeMm(Paper paper, double& width_mm, double& height_mm) {
   if (paper == Paper::A3) {
     width_mm = 420.0;
     height_mm = 297.0;
+  } else if (paper == Paper::Letter) {
+    width_mm = 279.4;
+    height_mm = 215.9;
   } else {
     width_mm = 297.0;
     height_mm = 210.0;
   }
 }
 
-const char* paperName(Paper paper) { return paper == Paper::A3 ? "A3" : "A4"; }
+const char* paperName(Paper paper) {
+  return paper == Paper::A3 ? "A3" : paper == Paper::Letter ? "Letter" : "A4";
+}
+
+bool parsePaper(const std::string& name, Paper& paper) {
+  std::string lower;
+  for (const char c : name) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const Paper p : {Paper::A4, Paper::A3, Paper::Letter}) {
+    std::string n = paperName(p);
+    for (char& c : n) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (n == lower) {
+      paper = p;
+      return true;
+    }
+  }
+  return false;
+}
 
 void layoutPatternPage(const PatternGeometry& pattern, const TargetGeometry& target, Paper paper, PatternPage& page) {
   page = {};
@@ -94,6 +128,8 @@ void layoutPatternPage(const PatternGeometry& pattern, const TargetGeometry& tar
   const double x0 = kPageMarginMm, x1 = page.width_mm - kPageMarginMm;
   const double y0 = kPageMarginMm, y1 = page.height_mm - kPageMarginMm - kTextBandMm;
   const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
+  page.origin_x_mm = cx;
+  page.origin_y_mm = cy;
 
   const double half = patternCardHalfMm(pattern, target);
   page.rects.push_back({cx - half, cy - half, 2 * half, 2 * half});
@@ -120,28 +156,59 @@ void layoutPatternPage(const PatternGeometry& pattern, const TargetGeometry& tar
     page.grid_rows = rMax - rMin + 1;
   }
 
-  // Text on the left of the band, the scale bar on its right.
-  const double line = 1.5 * kTextSizeMm;
-  const double ty = y1 + 0.5 * kTextBandMm - line + 0.35 * kTextSizeMm;
-  page.texts.push_back({x0, ty,
-                        kTextSizeMm,
-                        "ImagePro calibration pattern. Print at actual size (100 %, no fitting): the bar measures " +
-                            g(kScaleBarMm) + " mm."});
-  page.texts.push_back({x0, ty + line, kTextSizeMm,
-                        "Spots " + g(2 * r) + " mm diameter, " + g(pattern.spot_spacing_mm) + " mm apart. Card " +
-                            g(2 * half) + " mm square. Disk " + g(2 * target.radius_mm) + " mm, its spots " +
-                            g(2 * target.spot_radius_mm) + " mm, " + g(target.spot_offset_mm) + " mm apart."});
-  page.texts.push_back({x0, ty + 2 * line, kTextSizeMm,
-                        "Settings pattern: spot_spacing_mm " + g(pattern.spot_spacing_mm) + ", spot_radius_mm " +
-                            g(pattern.spot_radius_mm) + ", card_size_mm " + g(pattern.card_size_mm) + ". This " +
-                            paperName(paper) + " page: " + std::to_string(page.grid_columns) + " x " +
-                            std::to_string(page.grid_rows) + " of its " + std::to_string(pattern.columns) + " x " +
-                            std::to_string(pattern.rows) + " grid."});
-  const double barX = x1 - kScaleBarMm, barY = y1 + 0.5 * kTextBandMm + 1.0;
-  page.rects.push_back({barX, barY, kScaleBarMm, 0.8});
-  page.rects.push_back({barX, barY - 2.5, 0.4, 3.3});
-  page.rects.push_back({x1 - 0.4, barY - 2.5, 0.4, 3.3});
-  page.texts.push_back({barX + 0.5 * kScaleBarMm - 4.0, barY - 1.5, kTextSizeMm, g(kScaleBarMm) + " mm"});
+  addTextBand(page, {"ImagePro calibration pattern. Print at actual size (100 %, no fitting): the bar measures " +
+                         g(kScaleBarMm) + " mm.",
+                     "Spots " + g(2 * r) + " mm diameter, " + g(pattern.spot_spacing_mm) + " mm apart. Card " +
+                         g(2 * half) + " mm square. Disk " + g(2 * target.radius_mm) + " mm, its spots " +
+                         g(2 * target.spot_radius_mm) + " mm, " + g(target.spot_offset_mm) + " mm apart.",
+                     "Settings pattern: spot_spacing_mm " + g(pattern.spot_spacing_mm) + ", spot_radius_mm " +
+                         g(pattern.spot_radius_mm) + ", card_size_mm " + g(pattern.card_size_mm) + ". This " +
+                         paperName(paper) + " page: " + std::to_string(page.grid_columns) + " x " +
+                         std::to_string(page.grid_rows) + " of its " + std::to_string(pattern.columns) + " x " +
+                         std::to_string(pattern.rows) + " grid."});
+}
+
+bool layoutDotGridPage(const DotGridSpec& spec, Paper paper, PatternPage& page, std::string& error) {
+  page = {};
+  error = dotGridSpecError(spec);
+  if (!error.empty()) return false;
+  if (spec.kind == DotGridKind::Thesis) {
+    layoutPatternPage(thesisPatternOf(spec), spec.target, paper, page);
+    return true;
+  }
+  paperSizeMm(paper, page.width_mm, page.height_mm);
+  const double x0 = kPageMarginMm, x1 = page.width_mm - kPageMarginMm;
+  const double y0 = kPageMarginMm, y1 = page.height_mm - kPageMarginMm - kTextBandMm;
+  const double d = dotDiameterMm(spec), s = spec.spacing_mm;
+  const bool asym = spec.kind == DotGridKind::AsymmetricCircles;
+  const double w = (asym ? 2 * (spec.columns - 1) + 1 : spec.columns - 1) * s + d;
+  const double h = (spec.rows - 1) * s + d;
+  if (w > x1 - x0 || h > y1 - y0) {
+    error = "the grid is " + g(w) + " x " + g(h) + " mm, the " + paperName(paper) + " page holds " + g(x1 - x0) +
+            " x " + g(y1 - y0) + " mm: take a larger paper, a smaller spacing or fewer dots";
+    return false;
+  }
+  page.origin_x_mm = 0.5 * (x0 + x1 - w) + 0.5 * d;
+  page.origin_y_mm = 0.5 * (y0 + y1 - h) + 0.5 * d;
+  for (int i = 0; i < spec.rows; ++i)
+    for (int j = 0; j < spec.columns; ++j) {
+      const Eigen::Vector2d p = dotGridPointMm(spec, j, i);
+      page.circles.push_back({page.origin_x_mm + p.x(), page.origin_y_mm + p.y(), 0.5 * d, true});
+    }
+  page.grid_spots = spec.columns * spec.rows;
+  page.grid_columns = spec.columns;
+  page.grid_rows = spec.rows;
+  const std::string kind(dotGridKindName(spec.kind));
+  addTextBand(page, {"ImagePro calibration pattern: OpenCV " + std::string(asym ? "asymmetric" : "symmetric") +
+                         " circle grid. Print at actual size (100 %, no fitting): the bar measures " +
+                         g(kScaleBarMm) + " mm.",
+                     std::to_string(spec.columns) + " x " + std::to_string(spec.rows) +
+                         " dots (points per row x rows, OpenCV's pattern size), spacing " + g(s) +
+                         " mm, dot diameter " + g(d) + " mm. Glue it flat.",
+                     "imagepro-cli calibrate --intrinsics --pattern " + kind + " --columns " +
+                         std::to_string(spec.columns) + " --rows " + std::to_string(spec.rows) + " --spacing-mm " +
+                         g(s) + " --dot-diameter-mm " + g(d)});
+  return true;
 }
 
 std::string patternPageSvg(const PatternPage& page) {

@@ -1,6 +1,6 @@
 #pragma once
-// Printable calibration pattern (thesis 4.3, fig. 4.6): the pattern of pattern.h at true
-// scale on an A4 or A3 landscape page, as SVG, PDF or PNG, with its dimensions and a
+// Printable calibration pattern (thesis 4.3, fig. 4.6): the pattern of pattern.h, or one of
+// OpenCV's circle grids (dot_grid.h), at true scale on an A4, Letter or A3 landscape page, as SVG, PDF or PNG, with its dimensions and a
 // 100 mm scale bar printed along the bottom so a print can be checked with a ruler.
 // The page is the white sheet: the target on its card at the centre of the area above the
 // text, and every grid spot that lies wholly inside that area (kPageMarginMm from the
@@ -14,11 +14,12 @@
 #include <string>
 #include <vector>
 
+#include "core/calibration/dot_grid.h"
 #include "core/common/geometry.h"
 
 namespace imagepro {
 
-enum class Paper : std::uint8_t { A4, A3 };
+enum class Paper : std::uint8_t { A4, A3, Letter };
 
 inline constexpr double kPageMarginMm = 10.0;
 
@@ -42,13 +43,20 @@ struct PatternPage {
   std::vector<PageText> texts;
   int grid_spots = 0;               // grid spots on the page
   int grid_columns = 0, grid_rows = 0;  // extent of the grid on the page
+  double origin_x_mm = 0, origin_y_mm = 0;  // where the pattern's (0, 0) lies on the page
 };
 
-// Landscape page size in mm (A4 297 x 210, A3 420 x 297).
+// Landscape page size in mm (A4 297 x 210, A3 420 x 297, Letter 279.4 x 215.9).
 void paperSizeMm(Paper paper, double& width_mm, double& height_mm);
 const char* paperName(Paper paper);
+// "A4", "A3", "Letter" (any case).
+bool parsePaper(const std::string& name, Paper& paper);
 
 void layoutPatternPage(const PatternGeometry& pattern, const TargetGeometry& target, Paper paper, PatternPage& page);
+// Any dot grid: the thesis pattern as layoutPatternPage (what fits of it), an OpenCV grid
+// whole, centred, with its description and the calibrate command that takes it printed
+// below. False with `error` when the description is wrong or the grid does not fit.
+bool layoutDotGridPage(const DotGridSpec& spec, Paper paper, PatternPage& page, std::string& error);
 
 std::string patternPageSvg(const PatternPage& page);
 std::string patternPagePdf(const PatternPage& page);

@@ -78,17 +78,23 @@ int midClassThreshold(const Histogram& h, int t) {
 
 Status findPatternSpots(const cv::Mat& grey, const ThresholdOptions& threshold, SpotFinderWorkspace& ws,
                         std::vector<ObservedSpot>& out) {
+  return findPatternSpots(grey, grey, threshold, ws, out);
+}
+
+Status findPatternSpots(const cv::Mat& segment, const cv::Mat& grey, const ThresholdOptions& threshold,
+                        SpotFinderWorkspace& ws, std::vector<ObservedSpot>& out, double max_area_fraction) {
   out.clear();
-  if (grey.empty() || grey.type() != CV_8UC1) return Status::EmptyFrame;
-  computeHistogram(grey, ws.histogram);
+  if (grey.empty() || grey.type() != CV_8UC1 || segment.size() != grey.size() || segment.type() != CV_8UC1)
+    return Status::EmptyFrame;
+  computeHistogram(segment, ws.histogram);
   ThresholdOptions o = threshold;
   if (o.method == ThresholdMethod::None) o.method = ThresholdMethod::AtMod;
   int t = 0;
   if (const Status s = computeThreshold(o, ws.histogram, t); !ok(s)) return s;
   if (o.method != ThresholdMethod::Manual) t = midClassThreshold(ws.histogram, t);
-  cv::compare(grey, t, ws.dark, cv::CMP_LE);
+  cv::compare(segment, t, ws.dark, cv::CMP_LE);
   const int n = cv::connectedComponentsWithStats(ws.dark, ws.labels, ws.stats, ws.centroids, 8, CV_32S);
-  const int maxArea = grey.rows * grey.cols / 100;
+  const int maxArea = static_cast<int>(max_area_fraction * grey.rows * grey.cols);
   for (int label = 1; label < n; ++label) {
     const int* st = ws.stats.ptr<int>(label);
     const cv::Rect box(st[cv::CC_STAT_LEFT], st[cv::CC_STAT_TOP], st[cv::CC_STAT_WIDTH], st[cv::CC_STAT_HEIGHT]);

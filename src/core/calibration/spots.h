@@ -55,5 +55,12 @@ struct SpotFinderWorkspace {
 // `threshold` None is taken as AT-Mod (the pattern image always needs a threshold).
 Status findPatternSpots(const cv::Mat& grey, const ThresholdOptions& threshold, SpotFinderWorkspace& ws,
                         std::vector<ObservedSpot>& out);
+// The same with the spots cut from `segment` (e.g. the image with its uneven light divided
+// out) and their centres weighed on `grey` as the camera saw it (same size): dividing by an
+// estimate of the light bends each spot's rim profile where the estimate is off.
+// `max_area_fraction`: the largest spot, as a fraction of the image (a grid photographed
+// close up has dots of several percent).
+Status findPatternSpots(const cv::Mat& segment, const cv::Mat& grey, const ThresholdOptions& threshold,
+                        SpotFinderWorkspace& ws, std::vector<ObservedSpot>& out, double max_area_fraction = 0.01);
 
 }  // namespace imagepro

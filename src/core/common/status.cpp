@@ -56,6 +56,9 @@ StatusText text(Status s) {
     case Status::MatchAmbiguity: return {"MatchAmbiguity", "a calibration spot matches more than one ideal position"};
     case Status::Diverged: return {"Diverged", "the iteration diverged"};
     case Status::PoorCoverage: return {"PoorCoverage", "the pattern covers too little of the image to calibrate it to its corners: move the pattern closer or print it larger"};
+    case Status::InvalidPattern: return {"InvalidPattern", "the calibration pattern's description is impossible: check its rows, columns, spacing and dot diameter"};
+    case Status::GridNotFound: return {"GridNotFound", "the dot grid of the pattern was not found in the image: the whole grid must be in view, sharp and not too small"};
+    case Status::TooFewViews: return {"TooFewViews", "fewer than three images show the pattern: take 4 to 10 views of it, tilted differently"};
     case Status::TooFewTargets: return {"TooFewTargets", "fewer targets were reconstructed in the frame than the measurement needs"};
     case Status::TooFewFrames: return {"TooFewFrames", "too few frames with a reconstructed pose for the analysis"};
     case Status::NoSwing: return {"NoSwing", "the target does not swing: no repeated oscillation stands out from the noise"};

@@ -54,6 +54,9 @@ enum class Status : std::uint8_t {
   MatchAmbiguity,
   Diverged,
   PoorCoverage,        // the calibration's matched spots reach too little of the image
+  InvalidPattern,      // a calibration pattern's description cannot be drawn or found (rows 0, spacing <= 0, ...)
+  GridNotFound,        // the image shows no dot grid of the pattern's description
+  TooFewViews,         // fewer usable views of the pattern than the calibration needs
   // analysis (case studies, thesis 5.3)
   TooFewTargets,       // fewer targets in the frame than the measurement needs
   TooFewFrames,        // too few frames with a pose for the analysis

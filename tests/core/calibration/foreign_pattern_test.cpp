@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "calibration_scenes.h"
+#include "sheet_photo.h"
 #include "core/calibration/calibrate.h"
 #include "core/calibration/pattern_document.h"
 
@@ -65,44 +66,17 @@ cv::Mat drawSheet(const PatternGeometry& pattern, const TargetGeometry& target) 
   return sheet;
 }
 
-// Where the pattern's plane lies on a sheet image: sheet pixel of the target frame's origin
-// (the disk's centre), and the scale; +X right, +Y down on the sheet.
-struct SheetFrame {
-  double origin_x_px = 0.0, origin_y_px = 0.0;
-  double px_per_mm = kSheetPxPerMm;
-};
+using testing::PhotoConditions;
+using testing::SheetFrame;
 
 // The sheet seen by `camera` (with its distortion) at `pose`, blurred and noisy.
 cv::Mat photograph(const cv::Mat& sheet, const SheetFrame& frame, const CameraModel& camera, const Pose& pose,
                    unsigned seed) {
-  const int w = camera.width * kSupersampling, h = camera.height * kSupersampling;
-  cv::Mat mapX(h, w, CV_32FC1), mapY(h, w, CV_32FC1);
-  const Eigen::Matrix3d R = rotationMatrix(pose);
-  const Eigen::Vector3d T = translation(pose), n = R.col(2);
-  const Eigen::Vector2d pp(camera.u0(), camera.v0());
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i) {
-      const Eigen::Vector2d seen((i + 0.5) / kSupersampling - 0.5, (j + 0.5) / kSupersampling - 0.5);
-      // Invert eq. 4.7 (seen = ideal + delta(ideal)) by fixed-point iteration.
-      Eigen::Vector2d ideal = seen;
-      for (int k = 0; k < 20; ++k) ideal = seen - distortionDelta(camera.distortion, ideal - pp);
-      const Eigen::Vector3d ray = backProjectIdeal(camera, ideal);
-      const Eigen::Vector3d onPlane = R.transpose() * (n.dot(T) / n.dot(ray) * ray - T);
-      mapX.at<float>(j, i) = static_cast<float>(frame.origin_x_px + onPlane.x() * frame.px_per_mm);
-      mapY.at<float>(j, i) = static_cast<float>(frame.origin_y_px + onPlane.y() * frame.px_per_mm);
-    }
-  cv::Mat fine, image;
-  cv::remap(sheet, fine, mapX, mapY, cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(kBeyond));
-  cv::Mat fineF;
-  fine.convertTo(fineF, CV_32F);
-  cv::resize(fineF, image, cv::Size(camera.width, camera.height), 0, 0, cv::INTER_AREA);
-  cv::GaussianBlur(image, image, cv::Size(), 0.7);
-  cv::Mat noise(image.size(), CV_32F);
-  cv::RNG rng(seed);
-  rng.fill(noise, cv::RNG::NORMAL, 0.0, 2.0);
-  cv::Mat out;
-  cv::Mat(image + noise).convertTo(out, CV_8U);
-  return out;
+  PhotoConditions c;
+  c.supersampling = kSupersampling;
+  c.beyond = kBeyond;
+  c.seed = seed;
+  return testing::photograph(sheet, frame, camera, pose, c);
 }
 
 TEST(ForeignPattern, AnIndependentlyDrawnPatternCalibrates) {
