@@ -183,8 +183,8 @@ template <int N>
   const V ax = reinterpret_cast<V>(reinterpret_cast<M>(ex) & magnitude);
   const V ay = reinterpret_cast<V>(reinterpret_cast<M>(ey) & magnitude);
   const V hi = ay > ax ? ay : ax, lo = ay < ax ? ay : ax;  // std::max(ax, ay), std::min(ax, ay)
-  const V q = lo / hi, q2 = q * q;
-  V r = q * (0.99997726 + q2 * (-0.33262347 + q2 * (0.19354346 + q2 * (-0.11643287 + q2 * (0.05265332 + q2 * -0.01172120)))));
+  V r;
+  atanOfRatio<V>(lo / hi, r);
   r = ay > ax ? 0.5 * kPi - r : r;
   r = ex < zero ? kPi - r : r;
   r = ey < zero ? -r : r;

@@ -101,9 +101,10 @@ std::string VirtualSource::describe() const {
   std::string d = "virtual ";
   d += rate;
   d += ", ";
-  d += enumName(s.mode);
+  // Shown to people (the status bar, the CLI's summary): the display names, not the keys.
+  d += enumLabel(s.mode);
   d += ", ";
-  d += enumName(s.motion.kind);
+  d += enumLabel(s.motion.kind);
   if (content_ == VirtualContent::Pattern) d += ", pattern";
   return d;
 }

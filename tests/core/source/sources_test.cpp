@@ -80,7 +80,8 @@ TEST(VirtualSource, FramesCarryIndexTimeAndExactPose) {
   const Settings settings = virtualSettings();
   auto source = makeVirtualSource(settings);
   EXPECT_EQ(source->frameRateHz(), 20.0);
-  EXPECT_NE(source->describe().find("virtual"), std::string::npos);
+  // The status bar's text names the mode and motion by their display names.
+  EXPECT_EQ(source->describe(), "virtual 20 Hz, Binary, Sinusoid");
   Frame f;
   for (int i = 0; i < 12; ++i) {
     ASSERT_EQ(source->next(f), Status::Ok);
