@@ -1,5 +1,6 @@
 #include "app/plots/histogram_chart.h"
 
+#include "app/plots/chart_view.h"
 #include <QAreaSeries>
 #include <QChart>
 #include <QChartView>
@@ -34,12 +35,7 @@ HistogramChart::HistogramChart(QWidget* parent)
     s->attachAxis(y_);
   }
   chart_->setTitle(tr("Histogram of the searched region"));
-  chart_->setMargins(QMargins(2, 2, 2, 2));
-  auto* view = new QChartView(chart_);
-  view->setRenderHint(QPainter::Antialiasing);
-  auto* layout = new QVBoxLayout(this);
-  layout->setContentsMargins(0, 0, 0, 0);
-  layout->addWidget(view);
+  fillWithChart(this, chart_);
 }
 
 void HistogramChart::setHistogram(const Histogram& histogram, int threshold) {

@@ -1,5 +1,6 @@
 #include "app/plots/stage_time_chart.h"
 
+#include "app/plots/chart_view.h"
 #include <QBarCategoryAxis>
 #include <QBarSet>
 #include <QChart>
@@ -32,12 +33,7 @@ StageTimeChart::StageTimeChart(QWidget* parent) : QWidget(parent), chart_(new QC
   series->attachAxis(axis_);
   chart_->legend()->setAlignment(Qt::AlignBottom);
   chart_->setTitle(tr("Time per stage"));
-  chart_->setMargins(QMargins(2, 2, 2, 2));
-  auto* view = new QChartView(chart_);
-  view->setRenderHint(QPainter::Antialiasing);
-  auto* layout = new QVBoxLayout(this);
-  layout->setContentsMargins(0, 0, 0, 0);
-  layout->addWidget(view);
+  fillWithChart(this, chart_);
 }
 
 void StageTimeChart::setTimes(const StageTimes& times) {
