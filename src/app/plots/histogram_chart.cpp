@@ -1,6 +1,5 @@
 #include "app/plots/histogram_chart.h"
 
-#include "app/plots/chart_view.h"
 #include <QAreaSeries>
 #include <QChart>
 #include <QChartView>
@@ -9,6 +8,8 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
+
+#include "app/plots/chart_view.h"
 
 namespace imagepro::app {
 

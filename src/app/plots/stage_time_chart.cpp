@@ -1,6 +1,5 @@
 #include "app/plots/stage_time_chart.h"
 
-#include "app/plots/chart_view.h"
 #include <QBarCategoryAxis>
 #include <QBarSet>
 #include <QChart>
@@ -10,6 +9,8 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
+
+#include "app/plots/chart_view.h"
 
 namespace imagepro::app {
 
