@@ -12,7 +12,6 @@ SimdLevel detectSimdLevel() {
   // The AVX2 loops also use BMI1/BMI2 bit instructions (mask scans).
   if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2"))
     return SimdLevel::Avx2;
-  if (__builtin_cpu_supports("avx")) return SimdLevel::Avx;
 #endif
   return SimdLevel::Sse2;
 }

@@ -13,7 +13,7 @@
 
 namespace imagepro {
 
-enum class SimdLevel { Sse2, Avx, Avx2 };
+enum class SimdLevel { Sse2, Avx2 };
 
 // The widest level the processor supports, capped by setSimdCeiling.
 SimdLevel simdLevel();

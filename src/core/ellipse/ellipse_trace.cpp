@@ -4,6 +4,9 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <tuple>
 #include <utility>
 
 #if defined(__SSE2__)
@@ -124,116 +127,32 @@ inline void tracePoint(const TraceFrame& k, const ArcTable& table, double x, dou
 }
 
 #if defined(__SSE2__)
-// N doubles in one vector (GCC vector extensions: the arithmetic operators work lane by
-// lane, with scalars taken as all lanes), and the matching lane masks.
-template <int N>
-struct Lanes;
-template <>
-struct Lanes<2> {
+// The lanes of the trace, once per vector width (see simd_level.h): Ops gives the
+// vector of kLanes doubles (GCC vector extensions: the arithmetic operators work lane by
+// lane, scalars taken as all lanes), its lane masks and integer lanes, and a square root.
+namespace sse2 {
+struct Ops {
+  static constexpr int kLanes = 2;
   typedef double V __attribute__((vector_size(16)));
   typedef std::int64_t M __attribute__((vector_size(16)));
   typedef int I __attribute__((vector_size(8)));
+  static V sqrt(V v) { return reinterpret_cast<V>(_mm_sqrt_pd(reinterpret_cast<__m128d>(v))); }
 };
-template <>
-struct Lanes<4> {
+#include "core/ellipse/trace_pass.inc"
+}  // namespace sse2
+
+IMAGEPRO_AVX2_BEGIN
+namespace avx2 {
+struct Ops {
+  static constexpr int kLanes = 4;
   typedef double V __attribute__((vector_size(32)));
   typedef std::int64_t M __attribute__((vector_size(32)));
   typedef int I __attribute__((vector_size(16)));
+  static V sqrt(V v) { return reinterpret_cast<V>(_mm256_sqrt_pd(reinterpret_cast<__m256d>(v))); }
 };
-
-// tracePoint on N points at once: the same expressions, evaluated lane by lane, so the
-// same operations in the same order and bit for bit the same result (fastAtan2's
-// branches become selections). False, with nothing done, when a point is the ellipse's
-// centre; the caller then takes the points one by one.
-template <int N>
-[[gnu::always_inline]] inline bool traceLanes(const TraceFrame& k, const ArcTable& table, const double* xs,
-                                              const double* ys, double& total, std::size_t& inliers,
-                                              unsigned char* traced) {
-  using V = typename Lanes<N>::V;
-  using M = typename Lanes<N>::M;
-  V x, y;
-  for (int i = 0; i < N; ++i) {
-    x[i] = xs[i];
-    y[i] = ys[i];
-  }
-  const V zero{};
-  const M magnitude = M{} + std::numeric_limits<std::int64_t>::max();  // |a| is a & magnitude
-
-  const V u = (x - k.ox) * k.inv_scale, v = (y - k.oy) * k.inv_scale;
-  const V f = k.c0 * u * u + k.c1 * u * v + k.c2 * v * v + k.c3 * u + k.c4 * v + k.c5;
-  const V gu = 2.0 * k.c0 * u + k.c1 * v + k.c3;
-  const V gv = k.c1 * u + 2.0 * k.c2 * v + k.c4;
-  const V g2 = gu * gu + gv * gv;
-  for (int i = 0; i < N; ++i)
-    if (!(g2[i] > 0.0)) return false;
-  V root;
-  for (int i = 0; i < N; i += 2) {  // SSE2's square root, two lanes at a time
-    const __m128d pair = _mm_sqrt_pd(_mm_set_pd(g2[i + 1], g2[i]));
-    root[i] = _mm_cvtsd_f64(pair);
-    root[i + 1] = _mm_cvtsd_f64(_mm_unpackhi_pd(pair, pair));
-  }
-  const V ig = 1.0 / root;
-  const V d = k.scale * reinterpret_cast<V>(reinterpret_cast<M>(f) & magnitude) * ig;
-  for (int i = 0; i < N; ++i) total += d[i];
-  const M outlier = d > k.inlier_px;
-
-  const V step = f * ig * ig * k.scale;
-  const V dx = x - step * gu - k.cx, dy = y - step * gv - k.cy;
-  const V ey = (-dx * k.sn + dy * k.cs) * k.inv_b, ex = (dx * k.cs + dy * k.sn) * k.inv_a;
-  const V ax = reinterpret_cast<V>(reinterpret_cast<M>(ex) & magnitude);
-  const V ay = reinterpret_cast<V>(reinterpret_cast<M>(ey) & magnitude);
-  const V hi = ay > ax ? ay : ax, lo = ay < ax ? ay : ax;  // std::max(ax, ay), std::min(ax, ay)
-  V r;
-  atanOfRatio<V>(lo / hi, r);
-  r = ay > ax ? 0.5 * kPi - r : r;
-  r = ex < zero ? kPi - r : r;
-  r = ey < zero ? -r : r;
-  V t = hi > zero ? r : zero;
-  // arcIndex and ArcTable::arcAt lane by lane; their integer clamps become clamps in
-  // doubles before the conversion, which select the same integers.
-  using I = typename Lanes<N>::I;
-  t = t < zero ? t + kTwoPi : t;
-  const V at = t * (kArcSamples / kTwoPi);
-  V clamped = at > zero ? at : zero;
-  clamped = clamped < kArcSamples - 1 ? clamped : zero + (kArcSamples - 1);
-  const I sample = __builtin_convertvector(clamped, I);
-  V s0, s1;
-  for (int i = 0; i < N; ++i) {
-    s0[i] = table.s[static_cast<std::size_t>(sample[i])];
-    s1[i] = table.s[static_cast<std::size_t>(sample[i]) + 1];
-  }
-  const V arc = (s0 + (at - __builtin_convertvector(sample, V)) * (s1 - s0)) * k.arcs_per_px;
-  const I index = __builtin_convertvector(arc < k.arcs - 1 ? arc : zero + (k.arcs - 1), I);
-  for (int i = 0; i < N; ++i) {
-    if (outlier[i] != 0) continue;
-    ++inliers;
-    traced[index[i]] = 1;
-  }
-  return true;
-}
-
-// Points i .. i + N - 1 (traceLanes, or one by one at the ellipse's centre).
-template <int N, class Points, class Get>
-[[gnu::always_inline]] inline void traceBlock(const TraceFrame& k, const ArcTable& table, const Points& points,
-                                              std::size_t i, Get get, double& total, std::size_t& inliers,
-                                              unsigned char* traced) {
-  double xs[N], ys[N];
-  for (int j = 0; j < N; ++j) std::tie(xs[j], ys[j]) = get(points[i + static_cast<std::size_t>(j)]);
-  if (traceLanes<N>(k, table, xs, ys, total, inliers, traced)) return;
-  for (int j = 0; j < N; ++j) tracePoint(k, table, xs[j], ys[j], total, inliers, traced);
-}
-
-// Four points at a time with AVX, where the processor has it (the same operations as
-// with SSE2, in wider registers). Returns how many points it took.
-template <class Points, class Get>
-__attribute__((target("avx"))) std::size_t traceByFour(const TraceFrame& k, const ArcTable& table,
-                                                        const Points& points, Get get, double& total,
-                                                        std::size_t& inliers, unsigned char* traced) {
-  std::size_t i = 0;
-  for (; i + 4 <= points.size(); i += 4) traceBlock<4>(k, table, points, i, get, total, inliers, traced);
-  return i;
-}
-
+#include "core/ellipse/trace_pass.inc"
+}  // namespace avx2
+IMAGEPRO_AVX2_END
 #endif
 
 template <class Points, class Get>
@@ -257,8 +176,8 @@ void trace(const EllipseFit& fit, const Points& points, double inlier_px, cv::Si
   std::size_t inliers = 0;
   std::size_t i = 0;
 #if defined(__SSE2__)
-  if (simdAllows(SimdLevel::Avx)) i = traceByFour(frame, table, points, get, total, inliers, traced.data());
-  for (; i + 2 <= points.size(); i += 2) traceBlock<2>(frame, table, points, i, get, total, inliers, traced.data());
+  if (simdAllows(SimdLevel::Avx2)) i = avx2::tracePoints(frame, table, points, i, get, total, inliers, traced.data());
+  i = sse2::tracePoints(frame, table, points, i, get, total, inliers, traced.data());
 #endif
   for (; i < points.size(); ++i) {
     const auto [x, y] = get(points[i]);
