@@ -11,6 +11,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <cmath>
+
 #include "app/calibration_wizard/calibration_views.h"
 #include "app/calibration_wizard/wizard_widgets.h"
 #include "app/main_window/results_text.h"
@@ -129,12 +131,15 @@ void IntrinsicsReportPage::setResult(const IntrinsicsResult* r, const QStringLis
             .arg(number(r->model_fit_rms_px, 4)));
     fillParameters(*r);
     coverage_->setImage(rgbImage(coverageImage(*r, map_)));
-    coverage_caption_->setText(tr("Dots in %1 % of the %2 x %3 cells and %4 % of the border cells (%5 % and %6 % "
+    // Whole cells, not percentages: the warnings round theirs on their own.
+    constexpr int kCells = kCoverageColumns * kCoverageRows, kBorderCells = 2 * (kCoverageColumns + kCoverageRows) - 4;
+    coverage_caption_->setText(tr("Dots in %1 of the %2 x %3 cells and %4 of the %5 border cells (%6 % and %7 % "
                                   "wanted); each view's dots in its own colour.")
-                                   .arg(number(100.0 * map_.covered_fraction, 0))
+                                   .arg(std::lround(map_.covered_fraction * kCells))
                                    .arg(kCoverageColumns)
                                    .arg(kCoverageRows)
-                                   .arg(number(100.0 * map_.border_fraction, 0))
+                                   .arg(std::lround(map_.border_fraction * kBorderCells))
+                                   .arg(kBorderCells)
                                    .arg(number(100.0 * kMinCoveredFraction, 0))
                                    .arg(number(100.0 * kMinBorderFraction, 0)));
   } else {

@@ -4,6 +4,7 @@
 // it, and it reaches the settings and OpenCV's camera file; bad input is named.
 #include <QFile>
 #include <QImage>
+#include <QLabel>
 #include <QListWidget>
 #include <QProgressBar>
 #include <QRadioButton>
@@ -150,6 +151,8 @@ void CalibrationWizardTest::intrinsicModeRecoversTheCamera() {
   for (const int views : report.coverage().views) covered += views > 0 ? 1 : 0;
   QVERIFY(covered > 0);
   QCOMPARE(static_cast<double>(covered) / (kCoverageColumns * kCoverageRows), report.coverage().covered_fraction);
+  const QString caption = report.findChild<QLabel*>(QStringLiteral("intrinsicsCoverageCaption"))->text();
+  QVERIFY2(caption.startsWith(QStringLiteral("Dots in %1 of the 8 x 6 cells").arg(covered)), qPrintable(caption));
   // Warnings as the CLI names them, one line each; none is an item saying so.
   const auto& warnings = report.warnings();
   QCOMPARE(warnings.size(), intrinsicsWarnings(*r, report.coverage()).size());
