@@ -118,6 +118,7 @@ class IntrinsicsPage : public QWidget {
   QFutureWatcher<IntrinsicsRunUpdate>* run_ = nullptr;
   std::shared_ptr<std::atomic<bool>> run_cancelled_;
   std::vector<quint64> run_ids_;  // the images of the run in progress or the last one
+  QStringList run_names_;         // and their names (an image may be removed meanwhile)
   std::shared_ptr<const IntrinsicsResult> result_;
 
   QTabWidget* tabs_ = nullptr;

@@ -123,9 +123,11 @@ void IntrinsicsPage::calibrate() {
   }
   std::vector<cv::Mat> images;
   run_ids_.clear();
+  run_names_.clear();
   for (const Image& im : images_) {
     images.push_back(im.grey);
     run_ids_.push_back(im.id);
+    run_names_ << im.origin;
   }
   result_.reset();
   report_->setResult(nullptr, {});
@@ -167,7 +169,7 @@ void IntrinsicsPage::onRunUpdate(const IntrinsicsRunUpdate& update) {
     if (update.searched < update.images) {
       setRunStatus(tr("Finding the grid in image %1 of %2...").arg(update.searched + 1).arg(update.images), false);
     } else {
-      progress_->setFormat(tr("fitting"));
+      progress_->setRange(0, 0);  // busy: the fit says nothing until it ends
       setRunStatus(tr("Fitting the intrinsics to the grids found (OpenCV's calibrateCamera, each dot's centre "
                       "corrected for perspective)..."),
                    false);
@@ -177,13 +179,11 @@ void IntrinsicsPage::onRunUpdate(const IntrinsicsRunUpdate& update) {
   result_ = update.result;
   releaseRun(run_, this);
   const IntrinsicsResult& r = *result_;
-  progress_->setValue(progress_->maximum());
+  const int steps = static_cast<int>(run_ids_.size()) + 1;
+  progress_->setRange(0, steps);
+  progress_->setValue(steps);
   progress_->setFormat(ok(r.status) ? tr("done") : tr("failed"));
-  QStringList names;
-  for (const quint64 id : run_ids_)
-    for (const Image& im : images_)
-      if (im.id == id) names << im.origin;
-  report_->setResult(&r, names);
+  report_->setResult(&r, run_names_);
   refreshImages();
   if (ok(r.status)) {
     setRunStatus(tr("Calibrated from %1 of %2 images: fx %3 px, fy %4 px, principal point (%5, %6) px, reprojection "
