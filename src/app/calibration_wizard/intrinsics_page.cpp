@@ -16,6 +16,8 @@
 #include <QTabWidget>
 #include <QVBoxLayout>
 
+#include <algorithm>
+
 #include "app/calibration_wizard/calibration_images.h"
 #include "app/calibration_wizard/calibration_views.h"
 #include "app/calibration_wizard/intrinsics_report_page.h"
