@@ -7,7 +7,7 @@
 //    the printable sheet written as PDF on an A4, Letter or A3 page, as `imagepro-cli
 //    pattern` writes it.
 //  * The images: files, or the running source's frame (captured through the wizard).
-//  * Calibrate runs on a thread of the pool with its progress (each image's grid search,
+//  * Calibrate (k3 on request) runs on a thread of the pool with its progress (each image's grid search,
 //    then the fit); Cancel stops it between images and drops its result.
 //  * The quality report on its own tab (intrinsics_report_page.h).
 //  * Set and Use gives the camera found to the settings' camera section, Save calibration
@@ -27,6 +27,7 @@
 #include "core/calibration/dot_grid.h"
 #include "core/calibration/intrinsics.h"
 
+class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
@@ -132,6 +133,7 @@ class IntrinsicsPage : public QWidget {
   CalibrationImageView* preview_ = nullptr;
   QPushButton* remove_ = nullptr;
   QPushButton* clear_ = nullptr;
+  QCheckBox* fit_k3_ = nullptr;
   QPushButton* calibrate_ = nullptr;
   QPushButton* cancel_ = nullptr;
   QProgressBar* progress_ = nullptr;

@@ -1,4 +1,5 @@
 // IntrinsicsPage: the calibration run (off the GUI thread), Set and Use, and the files.
+#include <QCheckBox>
 #include <QDateTime>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -45,8 +46,14 @@ QWidget* IntrinsicsPage::buildRunBox() {
   progress_ = wizardProgressBar(QStringLiteral("intrinsicsProgress"));
   run_status_ = wizardTextLabel(QStringLiteral("intrinsicsRunStatus"), 4);
 
+  fit_k3_ = new QCheckBox(tr("Fit k3"));
+  fit_k3_->setObjectName(QStringLiteral("fitK3"));
+  fit_k3_->setToolTip(tr("Also OpenCV's k3, for a strongly curved wide-angle lens; otherwise it stays 0 (as "
+                         "calibrate --intrinsics without --fit-k3)"));
   QGroupBox* box = wizardRunBox(tr("Calibration"), calibrate_, cancel_, progress_, run_status_);
-  static_cast<QVBoxLayout*>(box->layout())->addStretch(1);
+  auto* layout = static_cast<QVBoxLayout*>(box->layout());
+  layout->insertWidget(0, fit_k3_);
+  layout->addStretch(1);
 
   connect(calibrate_, &QPushButton::clicked, this, &IntrinsicsPage::calibrate);
   connect(cancel_, &QPushButton::clicked, this, &IntrinsicsPage::cancelCalibration);
@@ -138,12 +145,14 @@ void IntrinsicsPage::calibrate() {
   progress_->setFormat(tr("finding the grids"));
   setRunStatus(tr("Finding the grid in %n image(s)...", nullptr, n), false);
 
+  IntrinsicsOptions options;
+  options.fit_k3 = fit_k3_->isChecked();
   run_cancelled_ = std::make_shared<std::atomic<bool>>(false);
   run_ = startPoolRun<IntrinsicsRunUpdate>(
       this,
-      [cancelled = run_cancelled_, images, s](QPromise<IntrinsicsRunUpdate>& promise) {
+      [cancelled = run_cancelled_, images, s, options](QPromise<IntrinsicsRunUpdate>& promise) {
         auto result = std::make_shared<IntrinsicsResult>();
-        calibrateIntrinsics(images, s, IntrinsicsOptions{}, *result, [&](int searched, int total) {
+        calibrateIntrinsics(images, s, options, *result, [&](int searched, int total) {
           if (cancelled->load()) return false;
           promise.addResult(IntrinsicsRunUpdate{searched, total, nullptr});
           return true;

@@ -2,6 +2,7 @@
 // printed grids photographed by a camera of known intrinsics (the core tests' renderer) go
 // in as files, the camera comes out within the core's measured accuracy, the report shows
 // it, and it reaches the settings and OpenCV's camera file; bad input is named.
+#include <QCheckBox>
 #include <QFile>
 #include <QImage>
 #include <QLabel>
@@ -200,6 +201,16 @@ void CalibrationWizardTest::intrinsicModeRecoversTheCamera() {
   QVERIFY(std::abs(w.settings().camera.u0() - r->cx) < 1e-6);
   QVERIFY(w.settings().pipeline.reconstruction.distortion_correction);
   QVERIFY2(page.runStatus().startsWith(QStringLiteral("Imported camera.yaml")), qPrintable(page.runStatus()));
+
+  // k3 on request: fitted, with its deviation in the report.
+  page.findChild<QCheckBox*>(QStringLiteral("fitK3"))->setChecked(true);
+  finished.clear();
+  page.calibrate();
+  QVERIFY(finished.wait(120000));
+  QVERIFY(page.result() && page.result()->status == Status::Ok);
+  QVERIFY(page.result()->deviation.k3 > 0.0);
+  QCOMPARE(parameters->item(8, 0)->text(), QStringLiteral("k3 (OpenCV)"));
+  QCOMPARE(parameters->item(8, 2)->text(), QString::number(page.result()->deviation.k3, 'f', 5));
 
   // Back to the thesis mode: its page is there as before.
   wizard.setMode(CalibrationMode::Distortion);
