@@ -183,6 +183,9 @@ gen_screenshots() {
     --screenshot docs/app-file.png --after 2
   screenshot docs/app-calibration-wizard.png env IMAGEPRO_WIZARD_SCREENSHOT=docs/app-calibration-wizard.png \
     QT_QPA_PLATFORM=xcb "${xvfb[@]}" "$tests" recoversTheLensFromVirtualPatternImages
+  screenshot docs/app-calibration-wizard-report.png env \
+    IMAGEPRO_WIZARD_REPORT_SCREENSHOT=docs/app-calibration-wizard-report.png QT_QPA_PLATFORM=xcb "${xvfb[@]}" \
+    "$tests" intrinsicModeRecoversTheCamera
   screenshot docs/app-analysis.png env IMAGEPRO_ANALYSIS_SCREENSHOT=docs/app-analysis.png QT_QPA_PLATFORM=xcb \
     "${xvfb[@]}" "$tests" virtualPendulumGivesG
 }

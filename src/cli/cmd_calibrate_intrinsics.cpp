@@ -207,12 +207,7 @@ int runIntrinsicCalibration(const Args& args) {
     if (text) std::printf("wrote %s\n", coverage->c_str());
   }
   if (const auto exportPath = args.value("export-opencv")) {
-    OpenCvCamera oc;
-    oc.width = r.width;
-    oc.height = r.height;
-    oc.camera_matrix = cv::Matx33d(r.fx, 0, r.cx, 0, r.fy, r.cy, 0, 0, 1);
-    oc.distortion.assign(r.opencv_dist.begin(), r.opencv_dist.end());
-    if (!writeOpenCvCamera(*exportPath, oc, error)) throw InputError(error);
+    if (!writeOpenCvCamera(*exportPath, openCvCameraOf(r), error)) throw InputError(error);
     if (text) std::printf("wrote %s\n", exportPath->c_str());
   }
   settings.camera = camera;

@@ -98,7 +98,8 @@ class SettingsFileTest : public QObject {
   std::unique_ptr<MainWindow> window_;
 };
 
-// The calibration wizard (thesis 4.6, appendix A): virtual pattern images, the run, Set and Use, errors.
+// The calibration wizard (thesis 4.6, appendix A): virtual pattern images, the run, Set and Use, errors;
+// and its full intrinsic mode on rendered dot grids of a known camera.
 class CalibrationWizardTest : public QObject {
   Q_OBJECT
  private slots:
@@ -110,6 +111,10 @@ class CalibrationWizardTest : public QObject {
   void captureTakesTheRunningSourcesFrame();
   void panelAndMenuOpenTheWizard();
   void closingOrCancellingWhileRunningIsSafe();
+  // The full intrinsic mode (intrinsics_page_test.cpp).
+  void intrinsicModeRecoversTheCamera();
+  void intrinsicModeNamesBadInput();
+  void intrinsicModeCapturesTheRunningSource();
  private:
   std::unique_ptr<MainWindow> window_;
 };

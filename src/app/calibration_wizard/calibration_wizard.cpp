@@ -9,11 +9,15 @@
 #include <QLabel>
 #include <QPromise>
 #include <QPushButton>
+#include <QRadioButton>
 #include <QSpinBox>
+#include <QStackedWidget>
 #include <QThreadPool>
 #include <QVBoxLayout>
 
 #include "app/calibration_wizard/calibration_views.h"
+#include "app/calibration_wizard/intrinsics_page.h"
+#include "app/calibration_wizard/wizard_widgets.h"
 #include "app/main_window/main_window.h"
 #include "app/worker/packet_builder.h"
 #include "app/worker/worker.h"
@@ -21,13 +25,6 @@
 namespace imagepro::app {
 
 namespace {
-
-QPushButton* button(const QString& text, const QString& name, const QString& tooltip) {
-  auto* b = new QPushButton(text);
-  b->setObjectName(name);
-  b->setToolTip(tooltip);
-  return b;
-}
 
 QString viewName(int slot) {
   const Pose v = virtualCalibrationView(slot);
@@ -53,6 +50,60 @@ CalibrationWizard::CalibrationWizard(MainWindow& window) : QDialog(&window), win
   setObjectName(QStringLiteral("calibrationWizard"));
   setWindowTitle(tr("Internal Camera Calibration"));
   setToolTip(QString());
+  intrinsics_ = new IntrinsicsPage(window_);
+  pages_ = new QStackedWidget;
+  pages_->setObjectName(QStringLiteral("calibrationModePages"));
+  pages_->addWidget(buildDistortionPage());
+  pages_->addWidget(intrinsics_);
+  auto* layout = new QVBoxLayout(this);
+  layout->addWidget(buildModeChoice());
+  layout->addWidget(pages_, 1);
+
+  connect(window_.worker(), &Worker::frameCaptured, this, &CalibrationWizard::onFrameCaptured);
+  connect(intrinsics_, &IntrinsicsPage::captureRequested, this, [this] {
+    const quint64 request = ++next_capture_;
+    pending_captures_[request] = kIntrinsicsCapture;
+    window_.worker()->captureFrame(request);
+  });
+  connect(intrinsics_, &IntrinsicsPage::closeRequested, this, &QDialog::close);
+  for (int i = 0; i < kCalibrationSlots; ++i) refreshSlot(i);
+  showField();
+  updateButtons();
+  resize(1400, 900);
+}
+
+QWidget* CalibrationWizard::buildModeChoice() {
+  distortion_mode_ = new QRadioButton(tr("Distortion only (thesis 4.6)"));
+  distortion_mode_->setObjectName(QStringLiteral("distortionMode"));
+  distortion_mode_->setToolTip(tr("The thesis's procedure: k1, k2, p1, p2 from up to four images of the thesis "
+                                  "pattern, with d0, the pixel size and the principal point known"));
+  intrinsics_mode_ = new QRadioButton(tr("Full intrinsics (focal length, principal point, distortion)"));
+  intrinsics_mode_->setObjectName(QStringLiteral("intrinsicsMode"));
+  intrinsics_mode_->setToolTip(tr("A camera nothing is known about (a webcam): fx, fy, the principal point and the "
+                                  "distortion from 3 or more images of a printed dot grid"));
+  distortion_mode_->setChecked(true);
+  auto* box = new QGroupBox(tr("What to calibrate"));
+  auto* row = new QHBoxLayout(box);
+  row->addWidget(distortion_mode_);
+  row->addWidget(intrinsics_mode_);
+  row->addStretch(1);
+  connect(intrinsics_mode_, &QRadioButton::toggled, this, [this](bool on) {
+    setMode(on ? CalibrationMode::Intrinsics : CalibrationMode::Distortion);
+  });
+  return box;
+}
+
+void CalibrationWizard::setMode(CalibrationMode mode) {
+  const bool intrinsics = mode == CalibrationMode::Intrinsics;
+  (intrinsics ? intrinsics_mode_ : distortion_mode_)->setChecked(true);
+  pages_->setCurrentIndex(intrinsics ? 1 : 0);
+}
+
+CalibrationMode CalibrationWizard::mode() const {
+  return pages_->currentIndex() == 1 ? CalibrationMode::Intrinsics : CalibrationMode::Distortion;
+}
+
+QWidget* CalibrationWizard::buildDistortionPage() {
   auto* images = new QGridLayout;
   for (int i = 0; i < kCalibrationSlots; ++i) images->addWidget(buildSlot(i), i / 2, i % 2);
 
@@ -76,15 +127,12 @@ CalibrationWizard::CalibrationWizard(MainWindow& window) : QDialog(&window), win
   auto* left = new QVBoxLayout;
   left->addLayout(images, 1);
   left->addLayout(legend_row);
-  auto* layout = new QHBoxLayout(this);
+  auto* page = new QWidget;
+  auto* layout = new QHBoxLayout(page);
+  layout->setContentsMargins(0, 0, 0, 0);
   layout->addLayout(left, 5);
   layout->addWidget(buildRunColumn(), 4);
-
-  connect(window_.worker(), &Worker::frameCaptured, this, &CalibrationWizard::onFrameCaptured);
-  for (int i = 0; i < kCalibrationSlots; ++i) refreshSlot(i);
-  showField();
-  updateButtons();
-  resize(1400, 880);
+  return page;
 }
 
 CalibrationWizard::~CalibrationWizard() = default;
@@ -102,26 +150,21 @@ QWidget* CalibrationWizard::buildSlot(int i) {
   Slot& s = slots_[static_cast<size_t>(i)];
   auto* box = new QGroupBox(tr("Image %1").arg(i + 1));
   box->setObjectName(QStringLiteral("calibrationSlot%1").arg(i + 1));
-  auto* open = button(tr("Open image..."), QStringLiteral("openImage%1").arg(i + 1),
+  auto* open = wizardButton(tr("Open image..."), QStringLiteral("openImage%1").arg(i + 1),
                       tr("An image of the calibration pattern from a file (thesis 4.6 step 1)"));
-  auto* capture = button(tr("Capture"), QStringLiteral("captureImage%1").arg(i + 1),
+  auto* capture = wizardButton(tr("Capture"), QStringLiteral("captureImage%1").arg(i + 1),
                          tr("The current frame of the running source, as in thesis appendix A.2.2 "
                             "(\"Set as Calibration Image\")"));
-  auto* render = button(tr("Render virtual"), QStringLiteral("renderImage%1").arg(i + 1),
+  auto* render = wizardButton(tr("Render virtual"), QStringLiteral("renderImage%1").arg(i + 1),
                         tr("The calibration pattern (thesis 4.3) drawn by the Virtual source through the settings' "
                            "lens, turned %1 as thesis 4.6 step 1 asks, its target %2 mm away on the optical axis")
                             .arg(viewName(i))
                             .arg(kVirtualCalibrationDistanceMm));
-  s.clear = button(tr("Clear"), QStringLiteral("clearImage%1").arg(i + 1),
+  s.clear = wizardButton(tr("Clear"), QStringLiteral("clearImage%1").arg(i + 1),
                    tr("Remove this image from the calibration (thesis appendix A: the check boxes)"));
   s.view = new CalibrationImageView;
   s.view->setObjectName(QStringLiteral("calibrationView%1").arg(i + 1));
-  s.status = new QLabel;
-  s.status->setObjectName(QStringLiteral("slotStatus%1").arg(i + 1));
-  s.status->setWordWrap(true);
-  s.status->setAlignment(Qt::AlignLeft | Qt::AlignTop);
-  s.status->setMinimumHeight(3 * s.status->fontMetrics().lineSpacing());
-  s.status->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  s.status = wizardTextLabel(QStringLiteral("slotStatus%1").arg(i + 1), 3);
 
   auto* buttons = new QHBoxLayout;
   for (QPushButton* b : {open, capture, render, s.clear}) buttons->addWidget(b);
@@ -201,6 +244,12 @@ void CalibrationWizard::onFrameCaptured(quint64 request, const cv::Mat& grey, co
   if (it == pending_captures_.end()) return;
   const int slot = it->second;
   pending_captures_.erase(it);
+  const QString origin = running ? tr("Captured from %1").arg(source)
+                                 : tr("Captured from %1 (stopped: its last frame)").arg(source);
+  if (slot == kIntrinsicsCapture) {
+    intrinsics_->takeCapture(grey, origin);
+    return;
+  }
   if (grey.empty()) {
     setSlotNote(slot, tr("Nothing to capture: no source is running and no image is open. Start the Camera or "
                          "Virtual source with the pattern in view (or open a file) first."),
@@ -208,8 +257,6 @@ void CalibrationWizard::onFrameCaptured(quint64 request, const cv::Mat& grey, co
     emit imageReady(slot);
     return;
   }
-  const QString origin = running ? tr("Captured from %1").arg(source)
-                                 : tr("Captured from %1 (stopped: its last frame)").arg(source);
   startAnalysis(slot, [grey](cv::Mat& out) { out = grey; }, origin);
 }
 
@@ -294,8 +341,7 @@ void CalibrationWizard::refreshSlot(int slot) {
     if (!image.grey.empty()) text = image.origin + QStringLiteral(". ") + text;
     error = !image.grey.empty() && !ok(run ? run->status : image.first.status);
   }
-  s.status->setText(text);
-  s.status->setStyleSheet(error ? QStringLiteral("color: #b00020;") : QString());
+  showStatusText(s.status, text, error);
 }
 
 }  // namespace imagepro::app

@@ -1,6 +1,8 @@
 #pragma once
 // The calibration wizard: the "Internal Camera Calibration" panel of thesis appendix A
-// (A.1.1, A.2.2) around the lens distortion calibration of thesis 4.6 (core/calibration).
+// (A.1.1, A.2.2). Two modes, chosen at its top: the lens distortion calibration of thesis
+// 4.6 (core/calibration/calibrate.h), described below, and the full intrinsic calibration
+// of a camera nothing is known about (intrinsics_page.h).
 //  * Four image slots. Each takes an image of the calibration pattern from a file, from the
 //    running source's current frame, or rendered by the Virtual source (the pattern turned
 //    +-45 deg about x and y, through the settings' lens), and shows what the procedure sees
@@ -26,14 +28,19 @@
 class QLabel;
 class QProgressBar;
 class QPushButton;
+class QRadioButton;
 class QSpinBox;
+class QStackedWidget;
 class QTableWidget;
 
 namespace imagepro::app {
 
 class CalibrationImageView;
 class DistortionFieldView;
+class IntrinsicsPage;
 class MainWindow;
+
+enum class CalibrationMode { Distortion, Intrinsics };
 
 // What the calibration thread hands back: one per iteration, then the result.
 struct CalibrationRunUpdate {
@@ -47,6 +54,10 @@ class CalibrationWizard : public QDialog {
  public:
   explicit CalibrationWizard(MainWindow& window);
   ~CalibrationWizard() override;
+
+  void setMode(CalibrationMode mode);
+  CalibrationMode mode() const;
+  IntrinsicsPage* intrinsicsPage() const { return intrinsics_; }
 
   // The buttons' actions, without their file dialogs (slot 0-3).
   void openImage(int slot, const QString& path);
@@ -88,6 +99,10 @@ class CalibrationWizard : public QDialog {
     bool note_is_error = false;
   };
 
+  static constexpr int kIntrinsicsCapture = -1;  // a capture for the intrinsic mode, not a slot
+
+  QWidget* buildModeChoice();
+  QWidget* buildDistortionPage();
   QWidget* buildSlot(int slot);
   QWidget* buildRunColumn();
   void chooseImageFile(int slot);
@@ -104,6 +119,10 @@ class CalibrationWizard : public QDialog {
   void updateButtons();
 
   MainWindow& window_;
+  QRadioButton* distortion_mode_ = nullptr;
+  QRadioButton* intrinsics_mode_ = nullptr;
+  QStackedWidget* pages_ = nullptr;
+  IntrinsicsPage* intrinsics_ = nullptr;
   std::array<Slot, kCalibrationSlots> slots_;
   std::map<quint64, int> pending_captures_;  // capture request -> slot
   quint64 next_capture_ = 0;

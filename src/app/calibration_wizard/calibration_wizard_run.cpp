@@ -7,17 +7,15 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QProgressBar>
-#include <QPromise>
 #include <QPushButton>
 #include <QTableWidget>
-#include <QThreadPool>
 #include <QVBoxLayout>
 
 #include "app/calibration_wizard/calibration_views.h"
 #include "app/calibration_wizard/calibration_wizard.h"
+#include "app/calibration_wizard/wizard_widgets.h"
 #include "app/main_window/main_window.h"
 #include "app/main_window/results_text.h"
-#include "core/calibration/calibration_file.h"
 
 namespace imagepro::app {
 
@@ -51,27 +49,16 @@ QString runRemedy(Status status) {
 }  // namespace
 
 QWidget* CalibrationWizard::buildRunColumn() {
-  calibrate_ = new QPushButton(tr("Calibrate"));
-  calibrate_->setObjectName(QStringLiteral("calibrate"));
-  calibrate_->setToolTip(tr("Lens distortion calibration (thesis 4.6): from zero distortion, reconstruct each image's "
-                            "pattern pose from its target, match the spots' ideal and seen positions, and fit k1, k2, "
-                            "p1, p2 by least squares (eqs. 4.8-4.9), until every parameter changes by less than the "
-                            "relative change limit"));
-  cancel_ = new QPushButton(tr("Cancel"));
-  cancel_->setObjectName(QStringLiteral("cancelCalibration"));
-  cancel_->setToolTip(tr("Stop waiting for the calibration (thesis 4.6); it ends in the background and its result is "
-                         "dropped"));
-  progress_ = new QProgressBar;
-  progress_->setObjectName(QStringLiteral("calibrationProgress"));
-  progress_->setRange(0, 1);
-  progress_->setValue(0);
-  progress_->setFormat(QString());
-  run_status_ = new QLabel;
-  run_status_->setObjectName(QStringLiteral("calibrationRunStatus"));
-  run_status_->setWordWrap(true);
-  run_status_->setAlignment(Qt::AlignLeft | Qt::AlignTop);
-  run_status_->setMinimumHeight(3 * run_status_->fontMetrics().lineSpacing());
-  run_status_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  calibrate_ = wizardButton(
+      tr("Calibrate"), QStringLiteral("calibrate"),
+      tr("Lens distortion calibration (thesis 4.6): from zero distortion, reconstruct each image's pattern pose from "
+         "its target, match the spots' ideal and seen positions, and fit k1, k2, p1, p2 by least squares (eqs. "
+         "4.8-4.9), until every parameter changes by less than the relative change limit"));
+  cancel_ = wizardButton(tr("Cancel"), QStringLiteral("cancelCalibration"),
+                         tr("Stop waiting for the calibration (thesis 4.6); it ends in the background and its result "
+                            "is dropped"));
+  progress_ = wizardProgressBar(QStringLiteral("calibrationProgress"));
+  run_status_ = wizardTextLabel(QStringLiteral("calibrationRunStatus"), 3);
 
   table_ = new QTableWidget(0, 9);
   table_->setObjectName(QStringLiteral("calibrationIterations"));
@@ -99,34 +86,20 @@ QWidget* CalibrationWizard::buildRunColumn() {
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   table_->setMinimumHeight(150);
 
-  auto* run_row = new QHBoxLayout;
-  run_row->addWidget(calibrate_);
-  run_row->addWidget(cancel_);
-  run_row->addWidget(progress_, 1);
-  auto* run_box = new QGroupBox(tr("Calibration (thesis 4.6)"));
-  auto* run_layout = new QVBoxLayout(run_box);
-  run_layout->addLayout(run_row);
-  run_layout->addWidget(run_status_);
-  run_layout->addWidget(table_, 1);
+  QGroupBox* run_box = wizardRunBox(tr("Calibration (thesis 4.6)"), calibrate_, cancel_, progress_, run_status_);
+  static_cast<QVBoxLayout*>(run_box->layout())->addWidget(table_, 1);
 
   field_ = new DistortionFieldView;
   field_->setObjectName(QStringLiteral("distortionField"));
   field_->setToolTip(tr("Where the lens moves each point of the image (thesis eq. 4.7): arrows from the undistorted "
                         "position, lengthened by the factor shown; + is the principal point"));
-  field_caption_ = new QLabel;
-  field_caption_->setObjectName(QStringLiteral("distortionFieldCaption"));
-  field_caption_->setWordWrap(true);
-  field_caption_->setAlignment(Qt::AlignLeft | Qt::AlignTop);
-  field_caption_->setMinimumHeight(3 * field_caption_->fontMetrics().lineSpacing());
-  field_caption_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  set_and_use_ = new QPushButton(tr("Set and Use"));
-  set_and_use_->setObjectName(QStringLiteral("setAndUse"));
-  set_and_use_->setToolTip(tr("Give the distortion found by the calibration (thesis 4.6) to the settings' camera, "
-                              "which every source uses, and turn distortion correction (thesis 4.5) on"));
-  save_ = new QPushButton(tr("Save calibration..."));
-  save_->setObjectName(QStringLiteral("saveCalibration"));
-  save_->setToolTip(tr("Write the camera with the distortion found (thesis 4.6) as a settings file of its camera "
-                       "section alone, as imagepro-cli calibrate does; an existing file is kept as .bak"));
+  field_caption_ = wizardTextLabel(QStringLiteral("distortionFieldCaption"), 3);
+  set_and_use_ = wizardButton(tr("Set and Use"), QStringLiteral("setAndUse"),
+                              tr("Give the distortion found by the calibration (thesis 4.6) to the settings' camera, "
+                                 "which every source uses, and turn distortion correction (thesis 4.5) on"));
+  save_ = wizardButton(tr("Save calibration..."), QStringLiteral("saveCalibration"),
+                       tr("Write the camera with the distortion found (thesis 4.6) as a settings file of its camera "
+                          "section alone, as imagepro-cli calibrate does; an existing file is kept as .bak"));
   auto* close = new QPushButton(tr("Close"));
   close->setObjectName(QStringLiteral("closeCalibration"));
   auto* field_box = new QGroupBox(tr("Distortion field (thesis eq. 4.7)"));
@@ -191,34 +164,25 @@ void CalibrationWizard::calibrate() {
                   static_cast<int>(images.size())),
                false);
 
-  auto promise = std::make_shared<QPromise<CalibrationRunUpdate>>();
-  run_ = new QFutureWatcher<CalibrationRunUpdate>(this);
-  connect(run_, &QFutureWatcherBase::resultReadyAt, this, [this, watcher = run_](int index) {
-    if (watcher == run_) onRunUpdate(watcher->resultAt(index));
-  });
-  run_->setFuture(promise->future());
-  promise->start();
   // The task owns copies of everything it reads and writes only to the promise, so the
   // wizard may be cancelled, closed or deleted while it runs.
-  QThreadPool::globalInstance()->start([promise, settings, images] {
-    auto result = std::make_shared<CalibrationResult>();
-    calibrateDistortion(settings, images, *result, [&promise](const CalibrationIteration& it) {
-      promise->addResult(CalibrationRunUpdate{it, nullptr});
-    });
-    promise->addResult(CalibrationRunUpdate{std::nullopt, std::move(result)});
-    promise->finish();
-  });
+  run_ = startPoolRun<CalibrationRunUpdate>(
+      this,
+      [settings, images](QPromise<CalibrationRunUpdate>& promise) {
+        auto result = std::make_shared<CalibrationResult>();
+        calibrateDistortion(settings, images, *result, [&promise](const CalibrationIteration& it) {
+          promise.addResult(CalibrationRunUpdate{it, nullptr});
+        });
+        promise.addResult(CalibrationRunUpdate{std::nullopt, std::move(result)});
+      },
+      [this](const CalibrationRunUpdate& update) { onRunUpdate(update); });
   updateButtons();
 }
 
 void CalibrationWizard::cancelCalibration() {
   if (!run_) return;
-  run_->disconnect(this);
-  run_->deleteLater();
-  run_ = nullptr;
-  progress_->setRange(0, 1);
-  progress_->setValue(0);
-  progress_->setFormat(QString());
+  releaseRun(run_, this);
+  resetProgress(progress_);
   setRunStatus(tr("Cancelled: the calibration ends in the background and its result is dropped."), false);
   updateButtons();
 }
@@ -240,8 +204,7 @@ void CalibrationWizard::onRunUpdate(const CalibrationRunUpdate& update) {
   }
   if (!update.result) return;
   result_ = update.result;
-  run_->deleteLater();
-  run_ = nullptr;
+  releaseRun(run_, this);
   const CalibrationResult& r = *result_;
   progress_->setRange(0, std::max(1, run_options_.max_iterations));
   progress_->setValue(ok(r.status) ? progress_->maximum() : r.iterations);
@@ -323,18 +286,14 @@ bool CalibrationWizard::saveCalibration(const QString& path) {
   if (!result_ || !ok(result_->status)) return false;
   Settings calibrated = window_.settings();
   calibrated.camera.distortion = result_->distortion;
-  std::string error;
-  if (!writeCalibrationFile(path.toStdString(), calibrated, error)) {
-    setRunStatus(tr("Calibration not saved: %1").arg(QString::fromStdString(error)), true);
-    return false;
-  }
-  setRunStatus(tr("Calibration saved to %1 (load it with Load Settings or imagepro-cli --config).").arg(path), false);
-  return true;
+  QString message;
+  const bool saved = saveCameraSection(path, calibrated, message);
+  setRunStatus(message, !saved);
+  return saved;
 }
 
 void CalibrationWizard::setRunStatus(const QString& text, bool error) {
-  run_status_->setText(text);
-  run_status_->setStyleSheet(error ? QStringLiteral("color: #b00020;") : QString());
+  showStatusText(run_status_, text, error);
 }
 
 QString CalibrationWizard::runStatus() const { return run_status_->text(); }

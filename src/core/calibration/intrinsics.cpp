@@ -240,12 +240,14 @@ Status calibrateFoundDots(std::vector<IntrinsicsView> views, cv::Size imageSize,
 }
 
 Status calibrateIntrinsics(std::span<const cv::Mat> images, const DotGridSpec& spec, const IntrinsicsOptions& options,
-                           IntrinsicsResult& result) {
+                           IntrinsicsResult& result, const IntrinsicsProgress& progress) {
   result = {};
   if (!dotGridSpecError(spec).empty()) return result.status = Status::InvalidPattern;
   std::vector<IntrinsicsView> views(images.size());
   cv::Size size;
   for (size_t i = 0; i < images.size(); ++i) {
+    if (progress && !progress(static_cast<int>(i), static_cast<int>(images.size())))
+      return result.status = Status::Stopped;
     const cv::Mat& im = images[i];
     if (im.empty() || im.type() != CV_8UC1) {
       views[i].status = Status::EmptyFrame;
@@ -261,6 +263,8 @@ Status calibrateIntrinsics(std::span<const cv::Mat> images, const DotGridSpec& s
     views[i].partial = g.partial;
     views[i].found = std::move(g.dots);
   }
+  if (progress && !progress(static_cast<int>(images.size()), static_cast<int>(images.size())))
+    return result.status = Status::Stopped;
   return calibrateFoundDots(std::move(views), size, spec, options, result);
 }
 

@@ -26,6 +26,7 @@
 #include <opencv2/core.hpp>
 
 #include <array>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -74,9 +75,13 @@ struct IntrinsicsResult {
   std::vector<IntrinsicsView> views;
 };
 
+// Step 1's progress: called with the images searched so far (0 before the first, all of
+// them before the fit) and their number; false stops the calibration there (Stopped).
+using IntrinsicsProgress = std::function<bool(int searched, int images)>;
+
 // Steps 1-4 over `images` (CV_8UC1, all of one size).
 Status calibrateIntrinsics(std::span<const cv::Mat> images, const DotGridSpec& spec, const IntrinsicsOptions& options,
-                           IntrinsicsResult& result);
+                           IntrinsicsResult& result, const IntrinsicsProgress& progress = {});
 
 // Steps 2-4 for dots already found: `views[i].found` and its status set by the caller.
 Status calibrateFoundDots(std::vector<IntrinsicsView> views, cv::Size imageSize, const DotGridSpec& spec,

@@ -85,6 +85,15 @@ bool readOpenCvCamera(const std::string& path, OpenCvCamera& camera, std::string
   }
 }
 
+OpenCvCamera openCvCameraOf(const IntrinsicsResult& r) {
+  OpenCvCamera oc;
+  oc.width = r.width;
+  oc.height = r.height;
+  oc.camera_matrix = cv::Matx33d(r.fx, 0, r.cx, 0, r.fy, r.cy, 0, 0, 1);
+  oc.distortion.assign(r.opencv_dist.begin(), r.opencv_dist.end());
+  return oc;
+}
+
 OpenCvCamera openCvCameraOf(const CameraModel& camera) {
   OpenCvCamera c;
   c.width = camera.width;

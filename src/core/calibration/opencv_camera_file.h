@@ -14,6 +14,8 @@
 
 namespace imagepro {
 
+struct IntrinsicsResult;
+
 struct OpenCvCamera {
   int width = 0, height = 0;
   cv::Matx33d camera_matrix = cv::Matx33d::eye();
@@ -27,6 +29,9 @@ bool writeOpenCvCamera(const std::string& path, const OpenCvCamera& camera, std:
 // False with `error` naming the file and what is missing or wrong.
 bool readOpenCvCamera(const std::string& path, OpenCvCamera& camera, std::string& error);
 
+// A full intrinsic calibration's camera as OpenCV found it (its distortion as fitted, not
+// through this project's model).
+OpenCvCamera openCvCameraOf(const IntrinsicsResult& result);
 // This project's camera in OpenCV's terms (its distortion fitted, exact for square pixels).
 OpenCvCamera openCvCameraOf(const CameraModel& camera);
 // OpenCV's camera into `camera`: size, principal point, d0 = fx * sx, sy = d0 / fy, the

@@ -13,6 +13,16 @@
 
 namespace imagepro::testing {
 
+inline DotGridSpec gridSpec(DotGridKind kind, int columns, int rows, double spacing_mm, double dot_diameter_mm) {
+  DotGridSpec s;
+  s.kind = kind;
+  s.columns = columns;
+  s.rows = rows;
+  s.spacing_mm = spacing_mm;
+  s.dot_diameter_mm = dot_diameter_mm;
+  return s;
+}
+
 // A 640x480 camera, fx = fy = 800 px, principal point off the image centre.
 inline CameraModel intrinsicTruthCamera(const Distortion& lens) {
   CameraModel c;

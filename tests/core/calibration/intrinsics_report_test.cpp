@@ -93,6 +93,38 @@ TEST(IntrinsicsReport, ExactDotsGiveTheCameraBackAndTheWarningsFollowTheViews) {
   }
   EXPECT_NEAR(r.cx, 322.0, 0.1);
   EXPECT_NEAR(r.opencv_dist[0], -0.25, 0.005);
+
+  // The result as OpenCV's camera: OpenCV's own coefficients, not refitted.
+  const OpenCvCamera oc = openCvCameraOf(r);
+  EXPECT_EQ(oc.width, 640);
+  EXPECT_EQ(oc.height, 480);
+  EXPECT_EQ(oc.camera_matrix, cv::Matx33d(r.fx, 0, r.cx, 0, r.fy, r.cy, 0, 0, 1));
+  EXPECT_EQ(oc.distortion, std::vector<double>(r.opencv_dist.begin(), r.opencv_dist.end()));
+}
+
+TEST(Intrinsics, ProgressIsReportedPerImageAndStopsTheRun) {
+  const cv::Mat blank(480, 640, CV_8UC1, cv::Scalar(200));
+  const std::vector<cv::Mat> images(3, blank);
+  std::vector<std::pair<int, int>> calls;
+  IntrinsicsResult r;
+  EXPECT_EQ(calibrateIntrinsics(images, symmetric(), {}, r,
+                                [&](int searched, int total) {
+                                  calls.emplace_back(searched, total);
+                                  return true;
+                                }),
+            Status::TooFewViews);
+  EXPECT_EQ(calls, (std::vector<std::pair<int, int>>{{0, 3}, {1, 3}, {2, 3}, {3, 3}}));
+  for (const IntrinsicsView& v : r.views) EXPECT_EQ(v.status, Status::GridNotFound);
+  // false stops it before the next image.
+  calls.clear();
+  EXPECT_EQ(calibrateIntrinsics(images, symmetric(), {}, r,
+                                [&](int searched, int total) {
+                                  calls.emplace_back(searched, total);
+                                  return searched < 1;
+                                }),
+            Status::Stopped);
+  EXPECT_EQ(calls.size(), 2u);
+  EXPECT_EQ(r.status, Status::Stopped);
 }
 
 TEST(IntrinsicsReport, AMisnamedViewIsLeftOut) {

@@ -23,19 +23,11 @@ using testing::GridView;
 using testing::PhotoConditions;
 using testing::RenderedGrid;
 
-DotGridSpec spec(DotGridKind kind, int columns, int rows, double spacing, double diameter) {
-  DotGridSpec s;
-  s.kind = kind;
-  s.columns = columns;
-  s.rows = rows;
-  s.spacing_mm = spacing;
-  s.dot_diameter_mm = diameter;
-  return s;
-}
-DotGridSpec asymmetricSpec() { return spec(DotGridKind::AsymmetricCircles, 4, 11, 15.0, 7.5); }
-DotGridSpec symmetricSpec() { return spec(DotGridKind::SymmetricCircles, 9, 6, 25.0, 12.5); }
+using testing::gridSpec;
+DotGridSpec asymmetricSpec() { return gridSpec(DotGridKind::AsymmetricCircles, 4, 11, 15.0, 7.5); }
+DotGridSpec symmetricSpec() { return gridSpec(DotGridKind::SymmetricCircles, 9, 6, 25.0, 12.5); }
 DotGridSpec thesisSpec() {
-  DotGridSpec s = spec(DotGridKind::Thesis, 13, 8, 20.0, 6.0);
+  DotGridSpec s = gridSpec(DotGridKind::Thesis, 13, 8, 20.0, 6.0);
   s.card_size_mm = 50.0;
   s.target = {20.0, 3.0, 10.0};
   return s;
@@ -127,7 +119,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{"asymmetric, thesis lens", asymmetricSpec(), kThesisCameraDistortion, false, 420.0},
                       // The grid of the photographs: 4 x 5 dots of 20 mm, s = 30 mm, filling the image.
                       Case{"asymmetric 4 x 5, 20 mm dots, webcam lens, uneven light",
-                           spec(DotGridKind::AsymmetricCircles, 4, 5, 30.0, 20.0), testing::kWebcamLens, true, 400.0},
+                           gridSpec(DotGridKind::AsymmetricCircles, 4, 5, 30.0, 20.0), testing::kWebcamLens, true, 400.0},
                       Case{"asymmetric, webcam lens, uneven light", asymmetricSpec(), testing::kWebcamLens, true, 420.0},
                       Case{"symmetric, webcam lens, uneven light", symmetricSpec(), testing::kWebcamLens, true, 500.0},
                       Case{"symmetric, thesis lens", symmetricSpec(), kThesisCameraDistortion, false, 500.0},
