@@ -1,6 +1,6 @@
 # The Python module (src/python): pybind11 and a Python 3 that has numpy. Decides
 # IMAGEPRO_PYTHON before the core is added, since the core's static libraries must then
-# be position-independent code to be linked into the module.
+# be position-independent code to be linked into the module (imagepro_module).
 #
 # The first python3 on the PATH may be an interpreter of its own (pyenv, a virtualenv)
 # without numpy; the module is built for the first one that has numpy (Debian's
@@ -34,12 +34,6 @@ option(IMAGEPRO_PYTHON "Build the Python module imagepro (pybind11, numpy)" ${_p
 if(IMAGEPRO_PYTHON)
   if(NOT _python_default)
     message(FATAL_ERROR "IMAGEPRO_PYTHON needs pybind11-dev, python3-dev and python3-numpy (Python: '${Python_EXECUTABLE}')")
-  endif()
-  set(CMAKE_POSITION_INDEPENDENT_CODE ON)
-  # Position-independent code for a static library linked into executables or the module:
-  # no symbol of it is ever interposed, so calls between its functions may still be inlined.
-  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
-    add_compile_options(-fno-semantic-interposition)
   endif()
   message(STATUS "Python module: ${Python_EXECUTABLE} (Python ${Python_VERSION}, pybind11 ${pybind11_VERSION})")
 else()
