@@ -98,3 +98,24 @@ def test_threads_share_the_module():
     for t in threads:
         t.join()
     assert not failures
+
+
+def test_an_ambiguous_pose_gives_both_candidates():
+    # Far and nearly face-on: the rim's two circles fit the spots about equally.
+    r = imagepro.reconstruct(imagepro.render(imagepro.Pose(0, 3, 0, 0, 0, 6000)))
+    assert r.status == "AmbiguousPose" and r.pose is None
+    first, second = r.candidates
+    assert abs(first.rx_deg + second.rx_deg) < 0.5 and abs(first.rx_deg) > 1  # mirrored about the line of sight
+    assert first.tz_mm == pytest.approx(6000, rel=0.05)
+    with pytest.raises(imagepro.AmbiguousPose):
+        r.raise_for_status()
+
+
+def test_pose_values():
+    p = imagepro.Pose(1, 2, 3, 4, 5, 600)
+    assert p.as_tuple() == (1, 2, 3, 4, 5, 600)
+    assert p == imagepro.Pose(rx_deg=1, ry_deg=2, rz_deg=3, tx_mm=4, ty_mm=5, tz_mm=600)
+    assert repr(p) == "Pose(rx_deg=1, ry_deg=2, rz_deg=3, tx_mm=4, ty_mm=5, tz_mm=600)"
+    assert imagepro.Pose().tz_mm == 1000
+    assert p.rotation_error_deg(p) == pytest.approx(0, abs=1e-6)
+    assert imagepro.Pose(rz_deg=10).rotation_error_deg(imagepro.Pose(rz_deg=-20)) == pytest.approx(30)
