@@ -19,8 +19,9 @@
 # PYTHONPATH=build/python /usr/bin/python3 -c "import imagepro; print(imagepro.__version__)"
 # ```
 #
-# `cmake --install build --component python` puts it in `lib/python3/dist-packages`
-# under the prefix (Debian's place for the system's `python3`). ctest runs its tests,
+# `cmake --install build --component python` puts it where Debian's `python3` finds it:
+# `/usr/lib/python3/dist-packages` under the prefix `/usr` (a package),
+# `lib/python3.X/dist-packages` under another (`/usr/local`). ctest runs its tests,
 # `tests/python/` (pytest).
 #
 # ## What it has
