@@ -11,6 +11,14 @@ function(imagepro_module name)
   target_include_directories(imagepro_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
   target_link_libraries(imagepro_${name} PUBLIC ${M_DEPS} ${OpenCV_LIBS} Eigen3::Eigen)
   target_include_directories(imagepro_${name} SYSTEM PUBLIC ${OpenCV_INCLUDE_DIRS})
+  if(IMAGEPRO_PYTHON)
+    # Linked into the Python module as well as the programs. None of its symbols is ever
+    # interposed, so calls between its functions may still be inlined.
+    set_target_properties(imagepro_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+      target_compile_options(imagepro_${name} PRIVATE -fno-semantic-interposition)
+    endif()
+  endif()
 endfunction()
 
 function(imagepro_test name)

@@ -55,6 +55,7 @@ generators=(
   "case-study-figures|cheap|docs/case-studies-*.png (two-targets --plot, pendulum --plots, 2 s)"
   "accuracy|slow|docs/accuracy.md (accuracy study, virtual and real scenes, a few minutes)"
   "screenshots|slow|docs/app-*.png (the application under xvfb-run, a minute; skipped without it)"
+  "python|slow|docs/python.md, docs/python-pose-error.png (docs/python-walkthrough.py run as a notebook, 20 s; needs the Python module and python3-matplotlib)"
 )
 
 if [ "$mode" = list ]; then
@@ -188,6 +189,16 @@ gen_screenshots() {
     "$tests" intrinsicModeRecoversTheCamera
   screenshot docs/app-analysis.png env IMAGEPRO_ANALYSIS_SCREENSHOT=docs/app-analysis.png QT_QPA_PLATFORM=xcb \
     "${xvfb[@]}" "$tests" virtualPendulumGivesG
+}
+
+# The walk-through of the Python module, run by the Python it was built for, cell by cell.
+gen_python() {
+  local module="$build_dir/python" python
+  python="$(sed -n 's/^Python_EXECUTABLE:[A-Z]*=//p' "$build_dir/CMakeCache.txt")"
+  ls "$module"/imagepro.*.so >/dev/null 2>&1 && [ -n "$python" ] || { log "python skipped: the module is not built (IMAGEPRO_PYTHON)"; return 0; }
+  "$python" -c "import matplotlib" 2>/dev/null || { log "python skipped: no matplotlib (apt-get install python3-matplotlib)"; return 0; }
+  timed "python walk-through" bash -c 'cd "$1" && PYTHONPATH="$2" "$3" "$4" docs/python-walkthrough.py --out docs/python.md' \
+    _ "$work" "$module" "$python" "$root/tools/python-notebook.py"
 }
 
 for g in "${generators[@]}"; do

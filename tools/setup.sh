@@ -35,12 +35,15 @@ jobs="${JOBS:-2}"
 # needs Qt6OpenGL, and recommends are not installed here.
 # opencv-doc (~96 MB) ships the photographs that real-scene frames are drawn over
 # (its examples/data folder); without it the real-scene tests skip.
+# The Python module (src/python) and its tests: pybind11, the system's python3 with numpy
+# and pytest.
 packages=(
   build-essential cmake pkg-config ccache
   qt6-base-dev qt6-charts-dev libqt6opengl6-dev libgl-dev
   libopencv-dev libopencv-contrib-dev libeigen3-dev nlohmann-json3-dev
   libv4l-dev libapriltag-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest
   opencv-doc
 )
 # libFuzzer comes with clang's runtime libraries.

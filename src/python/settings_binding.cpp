@@ -1,0 +1,188 @@
+// imagepro.Settings: the settings file's document (core/settings/settings.h), read and
+// edited by the keys of its settings table. A value is set by writing it into the JSON
+// document and reading that back, so the loader's checks (type, range, choices) are the
+// ones that apply, and its message names the key.
+#include <pybind11/stl.h>
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+#include "core/settings/settings.h"
+#include "python/bindings.h"
+#include "python/errors.h"
+
+namespace py = pybind11;
+using json = nlohmann::ordered_json;
+
+namespace imagepro::python {
+
+namespace {
+
+const SettingKey& settingKey(const std::string& key) {
+  const SettingKey* k = findSettingKey(key);
+  if (!k) throw StatusError(Status::InvalidSettings, key + ": unknown key (Settings.keys() lists them)");
+  return *k;
+}
+
+// Where `key` ("camera.principal_point_px[1]") lies in the settings document.
+json::json_pointer pointerTo(const std::string& key) {
+  std::string pointer = "/";
+  for (const char c : key) {
+    if (c == '.' || c == '[') pointer += '/';
+    else if (c != ']') pointer += c;
+  }
+  return json::json_pointer(pointer);
+}
+
+py::object toPython(const json& j) {
+  switch (j.type()) {
+    case json::value_t::boolean: return py::bool_(j.get<bool>());
+    case json::value_t::number_integer: return py::int_(j.get<std::int64_t>());
+    case json::value_t::number_unsigned: return py::int_(j.get<std::uint64_t>());
+    case json::value_t::number_float: return py::float_(j.get<double>());
+    case json::value_t::string: return py::str(j.get<std::string>());
+    case json::value_t::object: {
+      py::dict d;
+      for (const auto& [name, item] : j.items()) d[py::str(name)] = toPython(item);
+      return d;
+    }
+    case json::value_t::array: {
+      py::list l;
+      for (const auto& item : j) l.append(toPython(item));
+      return l;
+    }
+    default: return py::none();
+  }
+}
+
+json fromPython(const std::string& key, const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();  // before int: bool is an int in Python
+  if (py::isinstance<py::int_>(value)) {
+    try {
+      return value.cast<std::int64_t>();
+    } catch (const py::cast_error&) {
+      throw StatusError(Status::InvalidSettings, key + ": " + py::repr(value).cast<std::string>() + " is out of range");
+    }
+  }
+  if (py::isinstance<py::float_>(value)) return value.cast<double>();
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::dict>(value)) {
+    json object = json::object();
+    for (const auto& [name, item] : value.cast<py::dict>())
+      object[py::str(name).cast<std::string>()] = fromPython(key + "." + py::str(name).cast<std::string>(), item);
+    return object;
+  }
+  throw StatusError(Status::InvalidSettings, key + ": a " + py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>() +
+                                                 " is no settings value (bool, int, float, str or dict)");
+}
+
+py::object getValue(const Settings& s, const std::string& key) {
+  settingKey(key);
+  return toPython(json::parse(settingsToJson(s)).at(pointerTo(key)));
+}
+
+void setValue(Settings& s, const std::string& key, const py::handle& value) {
+  settingKey(key);
+  json document = json::parse(settingsToJson(s));
+  document.at(pointerTo(key)) = fromPython(key, value);
+  std::string error;
+  if (!ok(settingsFromJson(document.dump(), s, error))) throw StatusError(Status::InvalidSettings, error);
+}
+
+const char* typeName(SettingKey::Type t) {
+  switch (t) {
+    case SettingKey::Type::Number: return "number";
+    case SettingKey::Type::WholeNumber: return "whole number";
+    case SettingKey::Type::Flag: return "flag";
+    case SettingKey::Type::Choice: return "choice";
+    case SettingKey::Type::Text: return "text";
+    case SettingKey::Type::Names: return "names";
+  }
+  return "unknown";
+}
+
+py::dict keyInfo(const std::string& key) {
+  const SettingKey& k = settingKey(key);
+  py::dict d;
+  d["key"] = k.path;
+  d["type"] = typeName(k.type);
+  if (k.type == SettingKey::Type::Number || k.type == SettingKey::Type::WholeNumber) {
+    d["min"] = k.lo;
+    d["max"] = k.hi;
+  }
+  if (k.type == SettingKey::Type::Choice) {
+    py::list choices;
+    for (const auto& c : k.choices) choices.append(py::str(std::string(c.key)));
+    d["choices"] = choices;
+  }
+  return d;
+}
+
+Settings fromJsonText(const std::string& text) {
+  Settings s;
+  std::string error;
+  if (!ok(settingsFromJson(text, s, error))) throw StatusError(Status::InvalidSettings, error);
+  return s;
+}
+
+}  // namespace
+
+void bindSettings(py::module_& m) {
+  py::class_<Settings>(m, "Settings", R"(The settings of the pipeline: camera, target, virtual scene, every option.
+
+Values are read and written by the keys of the settings file (docs/conventions.md),
+e.g. s["pipeline.tracking.mode"] = "off" or s.get("camera.principal_point_px[0]").
+A value the settings file would refuse raises imagepro.InvalidSettings naming the key.)")
+      .def(py::init<>(), "The defaults.")
+      .def_static("defaults", [] { return Settings{}; }, "The defaults (the same as Settings()).")
+      .def_static(
+          "load",
+          [](const std::string& path) {
+            Settings s;
+            std::string error;
+            const Status status = loadSettings(path, s, error);
+            if (!ok(status)) throw StatusError(status, error);
+            return s;
+          },
+          py::arg("path"),
+          "Reads a settings file; missing keys keep their defaults. Raises imagepro.FileNotFound "
+          "or imagepro.InvalidSettings.")
+      .def(
+          "save",
+          [](const Settings& s, const std::string& path) {
+            std::string error;
+            const Status status = saveSettings(path, s, error);
+            if (!ok(status)) throw StatusError(status, error);
+          },
+          py::arg("path"), "Writes the settings file atomically. Raises imagepro.FileNotWritable.")
+      .def_static("from_json", &fromJsonText, py::arg("text"), "Settings from the settings file's JSON text.")
+      .def("to_json", &settingsToJson, "The settings file's JSON text.")
+      .def("get", &getValue, py::arg("key"), "The value at a key of the settings file.")
+      .def("set", &setValue, py::arg("key"), py::arg("value"), "Sets the value at a key, checked as the settings file is.")
+      .def("__getitem__", &getValue)
+      .def("__setitem__", &setValue)
+      .def("__contains__", [](const Settings&, const std::string& key) { return findSettingKey(key) != nullptr; })
+      .def_static(
+          "keys",
+          [] {
+            py::list keys;
+            for (const SettingKey& k : settingKeys()) keys.append(k.path);
+            return keys;
+          },
+          "Every key, in the order of the file.")
+      .def_static("key_info", &keyInfo, py::arg("key"), "A key's type, its range (numbers) or its choices.")
+      .def("copy", [](const Settings& s) { return s; })
+      .def("__copy__", [](const Settings& s) { return s; })
+      .def("__deepcopy__", [](const Settings& s, const py::dict&) { return s; })
+      .def("__eq__", [](const Settings& a, const Settings& b) { return settingsToJson(a) == settingsToJson(b); })
+      .def("__repr__", [](const Settings& s) {
+        const Settings defaults;
+        int changed = 0;
+        const json mine = json::parse(settingsToJson(s)), theirs = json::parse(settingsToJson(defaults));
+        for (const SettingKey& k : settingKeys()) changed += mine.at(pointerTo(k.path)) != theirs.at(pointerTo(k.path));
+        return "<imagepro.Settings: " + (changed == 0 ? std::string("the defaults") : std::to_string(changed) + " keys changed from the defaults") + ">";
+      });
+}
+
+}  // namespace imagepro::python

@@ -1,0 +1,86 @@
+"""imagepro.Settings: the settings file's keys, read, set and checked; load and save."""
+import pytest
+
+import imagepro
+
+
+def test_defaults_read_by_key():
+    s = imagepro.Settings()
+    assert s == imagepro.Settings.defaults()
+    assert s["camera.width"] == 640
+    assert s.get("camera.principal_point_px[1]") == pytest.approx(239.5)
+    assert s["pipeline.tracking.mode"] in imagepro.Settings.key_info("pipeline.tracking.mode")["choices"]
+    assert isinstance(s["camera_source.controls"], dict)
+    assert "camera.width" in s and "camera.nothing" not in s
+    assert "the defaults" in repr(s)
+
+
+def test_every_key_reads_and_sets_back_to_itself():
+    s = imagepro.Settings()
+    keys = imagepro.Settings.keys()
+    assert len(keys) > 50 and keys[0] == "camera.width"
+    for key in keys:
+        s[key] = s[key]
+    assert s == imagepro.Settings()
+
+
+def test_set_changes_the_value_and_the_json():
+    s = imagepro.Settings()
+    s["camera.principal_point_px[0]"] = 321.25
+    s.set("pipeline.tracking.mode", "off")
+    s["camera_source.controls"] = {"exposure_absolute": 150}
+    assert s["camera.principal_point_px[0]"] == 321.25
+    assert s["pipeline.tracking.mode"] == "off"
+    assert s["camera_source.controls"] == {"exposure_absolute": 150}
+    assert '"exposure_absolute": 150' in s.to_json()
+    assert imagepro.Settings.from_json(s.to_json()) == s
+    assert "3 keys changed" in repr(s)
+
+
+def test_round_trip_through_a_file(tmp_path):
+    s = imagepro.Settings()
+    s["camera.width"] = 800
+    s["camera.height"] = 600
+    s["target.radius_mm"] = 40.0
+    s["virtual.noise_sigma"] = 2.5
+    s["pipeline.ellipse.method"] = "bennett"
+    path = tmp_path / "settings.json"
+    s.save(str(path))
+    loaded = imagepro.Settings.load(str(path))
+    assert loaded == s
+    assert loaded["camera.width"] == 800 and loaded["target.radius_mm"] == 40.0
+    assert loaded["pipeline.ellipse.method"] == "bennett"
+
+
+def test_values_the_file_refuses_raise_named_errors():
+    s = imagepro.Settings()
+    with pytest.raises(imagepro.InvalidSettings, match="camera.width"):
+        s["camera.width"] = 0  # below the key's range
+    with pytest.raises(imagepro.InvalidSettings, match="pipeline.tracking.mode"):
+        s["pipeline.tracking.mode"] = "sideways"
+    with pytest.raises(imagepro.InvalidSettings, match="camera.width"):
+        s["camera.width"] = 640.5  # a whole number expected
+    with pytest.raises(imagepro.InvalidSettings, match="unknown key"):
+        s["camera.colour"] = 1
+    with pytest.raises(imagepro.InvalidSettings):
+        s["target.radius_mm"] = [1, 2]
+    with pytest.raises(imagepro.InvalidSettings):
+        s["target.radius_mm"] = float("inf")
+    with pytest.raises(imagepro.InvalidSettings):
+        s["camera.width"] = 2**80
+    assert s == imagepro.Settings()  # a refused value changes nothing
+    info = imagepro.Settings.key_info("camera.width")
+    assert info["type"] == "whole number" and info["min"] == 1
+
+
+def test_file_errors_raise_named_errors(tmp_path):
+    with pytest.raises(imagepro.FileNotFound):
+        imagepro.Settings.load(str(tmp_path / "missing.json"))
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"camera": {"width": "wide"}}')
+    with pytest.raises(imagepro.InvalidSettings, match="camera.width"):
+        imagepro.Settings.load(str(bad))
+    with pytest.raises(imagepro.FileNotWritable):
+        imagepro.Settings().save(str(tmp_path / "no" / "such" / "folder" / "s.json"))
+    with pytest.raises(imagepro.InvalidSettings):
+        imagepro.Settings.from_json("[1, 2]")
