@@ -13,12 +13,13 @@
 #include "app/main_window/main_window.h"
 #include "app/main_window/responsiveness_probe.h"
 #include "app/worker/source_kind.h"
+#include "core/common/version.h"
 
 int main(int argc, char** argv) {
   QApplication app(argc, argv);
   QApplication::setOrganizationName(QStringLiteral("ImagePro"));
   QApplication::setApplicationName(QStringLiteral("ImagePro"));
-  QApplication::setApplicationVersion(QStringLiteral(IMAGEPRO_VERSION));
+  QApplication::setApplicationVersion(QString::fromLatin1(imagepro::kVersion));
 
   QCommandLineParser parser;
   parser.setApplicationDescription(QStringLiteral("Real-time monocular 3D reconstruction of a secondary passive target."));

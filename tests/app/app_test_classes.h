@@ -65,6 +65,7 @@ class FileTest : public QObject {
   void listFilePlaysInItsOrder();
   void missingFileShowsAnError();
   void droppedFilesAreOpenedAndRemembered();
+  void samplesOpenFromTheMenu();
  private:
   std::unique_ptr<MainWindow> window_;
 };

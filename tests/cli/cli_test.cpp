@@ -15,6 +15,7 @@
 
 #include "support/cli_run.h"
 #include "core/common/atomic_file.h"
+#include "core/common/version.h"
 #include "support/test_dirs.h"
 
 namespace imagepro {
@@ -39,13 +40,39 @@ TEST(Cli, OverviewListsTheCommands) {
 
 TEST(Cli, EveryCommandHasHelp) {
   const CliRun overview = cli("--help");
-  for (const std::string& line : lines(overview.out)) {
-    if (line.rfind("  ", 0) != 0) continue;
-    const std::string name = line.substr(2, line.find(' ', 2) - 2);
+  const std::vector<std::string> names = test::overviewCommands(overview.out);
+  EXPECT_GE(names.size(), 15u);
+  for (const std::string& name : names) {
     const CliRun r = cli(name + " --help");
     EXPECT_EQ(r.exit_code, 0) << name;
     EXPECT_NE(r.out.find("usage: imagepro-cli " + name), std::string::npos) << name;
   }
+}
+
+TEST(Cli, VersionIsTheProjects) {
+  const CliRun r = cli("--version");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out, std::string("imagepro-cli ") + kVersion + "\n");
+  EXPECT_NE(cli("--help").out.find("--version"), std::string::npos);
+}
+
+TEST(Cli, DataDirFromTheBuildTreeIsTheSourcesData) {
+  const CliRun r = cli("--data-dir");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_FALSE(r.out.empty());
+  EXPECT_TRUE(fs::equivalent(r.out.substr(0, r.out.size() - 1), IMAGEPRO_DATA_DIR)) << r.out;
+}
+
+TEST(Cli, InstalledCopyFindsTheDataBesideIt) {
+  // The install layout without the package: bin/imagepro-cli and share/imagepro.
+  const fs::path prefix = freshDir("cli_installed") / "usr";
+  fs::create_directories(prefix / "bin");
+  fs::create_directories(prefix / "share/imagepro");
+  fs::copy_file(IMAGEPRO_CLI, prefix / "bin/imagepro-cli");
+  fs::copy_file(fs::path(IMAGEPRO_DATA_DIR) / "settings.json", prefix / "share/imagepro/settings.json");
+  const CliRun r = test::runProgram((prefix / "bin/imagepro-cli").string(), "--data-dir");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, (prefix / "share/imagepro").string() + "\n");
 }
 
 TEST(Cli, MethodListsComeFromTheEnumTables) {

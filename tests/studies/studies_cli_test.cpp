@@ -26,9 +26,9 @@ TEST(Studies, OverviewListsTheStudiesAndEachHasHelp) {
   for (const char* c :
        {"accuracy", "calibration-study", "track-study", "pendulum-study", "ellipse-library", "bench-peers"})
     EXPECT_NE(r.out.find(std::string("  ") + c + " "), std::string::npos) << c;
-  for (const std::string& line : lines(r.out)) {
-    if (line.rfind("  ", 0) != 0) continue;
-    const std::string name = line.substr(2, line.find(' ', 2) - 2);
+  const std::vector<std::string> names = test::overviewCommands(r.out);
+  EXPECT_GE(names.size(), 6u);
+  for (const std::string& name : names) {
     const CliRun help = studies(name + " --help");
     EXPECT_EQ(help.exit_code, 0) << name;
     EXPECT_NE(help.out.find("usage: imagepro-studies " + name), std::string::npos) << name;

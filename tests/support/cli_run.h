@@ -66,4 +66,20 @@ inline std::vector<std::string> lines(const std::string& text) {
   return out;
 }
 
+// The command names an overview (--help) lists under "Commands:", up to its blank line.
+inline std::vector<std::string> overviewCommands(const std::string& overview) {
+  std::vector<std::string> names;
+  bool listing = false;
+  for (const std::string& line : lines(overview)) {
+    if (line == "Commands:") {
+      listing = true;
+    } else if (listing && line.empty()) {
+      break;
+    } else if (listing) {
+      names.push_back(line.substr(2, line.find(' ', 2) - 2));
+    }
+  }
+  return names;
+}
+
 }  // namespace imagepro::test

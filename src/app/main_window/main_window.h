@@ -44,6 +44,7 @@ class MainWindow : public QMainWindow {
   void startSource();                            // the selected live source
   void stopSource();
   void openPaths(const QStringList& paths);      // files or folders: switches to File input
+  void openSamples();                            // the shipped sample frames (data_directory.h)
   bool saveScreenshot(const QString& path);
   void startDataOut(const QString& path, ExistingFile existing, bool replace);
   void stopDataOut();

@@ -22,6 +22,7 @@
 #include "app/settings/settings_dialog.h"
 #include "app/panels/source_panel.h"
 #include "app/worker/worker.h"
+#include "core/common/data_directory.h"
 
 namespace imagepro::app {
 
@@ -36,6 +37,7 @@ void MainWindow::buildMenus() {
   QAction* open = file->addAction(tr("&Open Images..."), this, [this] { openDialog(false); });
   open->setShortcut(QKeySequence::Open);
   file->addAction(tr("Open &Folder..."), this, [this] { openDialog(true); })->setShortcut(QKeySequence(tr("Ctrl+Shift+O")));
+  file->addAction(tr("Open S&amples"), this, &MainWindow::openSamples);
   QMenu* recent_menu = file->addMenu(tr("&Recent"));
   recent_ = new RecentFiles(recent_menu, this);
   connect(recent_, &RecentFiles::chosen, this, [this](const QString& path) { openPaths({path}); });
@@ -111,6 +113,16 @@ void MainWindow::openDialog(bool folder) {
     paths = QFileDialog::getOpenFileNames(this, tr("Open images"), last_dir_, kImageFilter);
   }
   openPaths(paths);
+}
+
+void MainWindow::openSamples() {
+  const std::filesystem::path data = dataDirectory();
+  const QString samples = data.empty() ? QString() : QString::fromStdString((data / "samples").string());
+  if (samples.isEmpty() || !QFileInfo(samples).isDir()) {
+    showError(tr("The sample frames are not installed"));
+    return;
+  }
+  openPaths({samples});
 }
 
 bool MainWindow::loadSettingsFile(const QString& path) {

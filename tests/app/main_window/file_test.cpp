@@ -1,5 +1,6 @@
 // File input: the image is processed and its parameters shown; an option change
 // reprocesses it; folders play in natural order; a bad file is a message, not a crash.
+#include <QAction>
 #include <QApplication>
 #include <QComboBox>
 #include <QDir>
@@ -141,6 +142,21 @@ void FileTest::droppedFilesAreOpenedAndRemembered() {
   refuse.setAccepted(false);
   QApplication::sendEvent(&again, &refuse);
   QVERIFY(!refuse.isAccepted());
+}
+
+// File > Open Samples plays the shipped sample frames, found as the installed program
+// finds them (here, from the build tree: the sources' data/samples).
+void FileTest::samplesOpenFromTheMenu() {
+  MainWindow& w = *window_;
+  QAction* open = nullptr;
+  for (QAction* a : w.findChildren<QAction*>())
+    if (a->text() == QStringLiteral("Open S&amples")) open = a;
+  QVERIFY(open);
+  open->trigger();
+  QCOMPARE(w.controlPanel()->sourcePanel()->kind(), SourceKind::File);
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample08_pattern.png"; }));
+  QTRY_VERIFY(!w.worker()->isRunning());
+  QVERIFY(w.lastError().isEmpty());
 }
 
 }  // namespace imagepro::app::test
