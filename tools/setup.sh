@@ -6,6 +6,8 @@
 #                         (without a display: a headless demo that prints poses)
 #   tools/setup.sh test   build, then run every test through ctest
 #   tools/setup.sh build  build only
+#   tools/setup.sh package  build what the Debian package holds, then the package itself:
+#                         BUILD_DIR/package/imagepro_<version>_<arch>.deb (packaging/)
 #   tools/setup.sh sanitize  AddressSanitizer + UndefinedBehaviorSanitizer build (build-sanitize),
 #                         preconditions checked, then the test suite; SANITIZE_TESTS=core-cli
 #                         leaves out the application and its tests (docs/reliability.md)
@@ -19,7 +21,7 @@
 set -euo pipefail
 
 mode="${1:-run}"
-case "$mode" in run|test|build|sanitize|tsan|fuzz) ;; *) echo "usage: tools/setup.sh run|test|build|sanitize|tsan|fuzz" >&2; exit 2 ;; esac
+case "$mode" in run|test|build|package|sanitize|tsan|fuzz) ;; *) echo "usage: tools/setup.sh run|test|build|package|sanitize|tsan|fuzz" >&2; exit 2 ;; esac
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 case "$mode" in
@@ -37,6 +39,9 @@ jobs="${JOBS:-2}"
 # (its examples/data folder); without it the real-scene tests skip.
 # The Python module (src/python) and its tests: pybind11, the system's python3 with numpy
 # and pytest.
+# The package (packaging/, its test): help2man writes imagepro-cli's man page, CPack's DEB
+# generator asks file and dpkg-shlibdeps (dpkg-dev) for the dependencies, and
+# desktop-file-validate checks the desktop entry.
 packages=(
   build-essential cmake pkg-config ccache
   qt6-base-dev qt6-charts-dev libqt6opengl6-dev libgl-dev
@@ -45,6 +50,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   pybind11-dev python3-dev python3-numpy python3-pytest
   opencv-doc
+  help2man dpkg-dev file desktop-file-utils
 )
 # libFuzzer comes with clang's runtime libraries.
 [ "$mode" = fuzz ] && packages+=(clang libclang-rt-14-dev libfuzzer-14-dev)
@@ -76,6 +82,7 @@ case "$mode" in
     mode_options=(-DIMAGEPRO_SANITIZE=thread)
     targets=(--target test_app test_pipeline)
     ;;
+  package) targets=(--target imagepro_package_contents) ;;
   fuzz)
     # The vector code's GCC target pragmas mean nothing to clang: the whole build takes
     # the AVX2 instructions they ask for (the fuzzing machine has them), and clang's
@@ -98,6 +105,10 @@ cmake --build "$build_dir" -j "$jobs" "${targets[@]}"
 
 case "$mode" in
   build) ;;
+  package)
+    echo "== making the Debian package"
+    (cd "$build_dir" && cpack --config CPackConfig.cmake)
+    ;;
   test)
     echo "== running the test suite"
     cd "$build_dir"
