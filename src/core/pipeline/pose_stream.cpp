@@ -30,7 +30,8 @@ void appendPose(std::string& out, Status status, const std::optional<Pose>& pose
     out += ",\"";
     out += kPoseColumnNames[i];
     out += "\":";
-    out += have ? poseNumber(values[i]) : std::string("null");
+    // JSON has no NaN or infinity: such a value (never a pose's, but never invalid JSON either) is null.
+    out += have && std::isfinite(values[i]) ? poseNumber(values[i]) : std::string("null");
   }
 }
 
@@ -95,7 +96,7 @@ std::string streamUrl(const StreamOptions& o) {
 
 std::string poseStreamJson(const FrameResult& r) {
   std::string out = "{\"frame\":" + std::to_string(r.index);
-  out += ",\"timestamp_s\":" + poseNumber(r.timestamp_s) + ",";
+  out += ",\"timestamp_s\":" + (std::isfinite(r.timestamp_s) ? poseNumber(r.timestamp_s) : std::string("null")) + ",";
   appendStatus(out, r.status);
   appendPose(out, r.status, r.pose);
   if (!r.name.empty()) {
