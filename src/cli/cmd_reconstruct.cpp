@@ -5,11 +5,13 @@
 #include <cstdio>
 
 #include "cli/command.h"
+#include "cli/enum_options.h"
 #include "cli/frame_input.h"
 #include "core/common/pose_csv.h"
 #include "core/pipeline/data_out.h"
 #include "core/pipeline/engine.h"
 #include "core/pipeline/frame_clock.h"
+#include "core/pipeline/pose_stream.h"
 
 namespace imagepro::cli {
 namespace {
@@ -42,9 +44,21 @@ std::string jsonRow(const std::string& frame, const FrameResult& r) {
   return row.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
 
+// The stream section of the settings, switched on by --stream udp://HOST:PORT; --stream-format
+// changes the format of either.
+StreamOptions streamOptions(const Args& args, StreamOptions options) {
+  if (const auto url = args.value("stream")) {
+    std::string error;
+    if (!parseStreamUrl(*url, options, error)) throw UsageError("--stream: " + error);
+    options.enabled = true;
+  }
+  options.format = enumOption<StreamFormat>(args, "stream-format", options.format);
+  return options;
+}
+
 int run(const Args& args) {
   std::vector<std::string> known = kFrameInputOptions;
-  known.insert(known.end(), {"format", "data-out", "truth", "no-pace"});
+  known.insert(known.end(), {"format", "data-out", "truth", "no-pace", "stream", "stream-format"});
   args.rejectUnknown(known);
   const std::string format = args.valueOr("format", "csv");
   if (format != "csv" && format != "json") throw UsageError("--format must be csv or json");
@@ -56,6 +70,14 @@ int run(const Args& args) {
   if (const auto path = args.value("data-out")) {
     std::string error;
     if (!ok(data_out.open(*path, ExistingFile::Fail, error))) throw InputError(error);
+  }
+
+  // An address that does not resolve is reported and the run goes on: the frames still
+  // reach the standard output and the data-out file.
+  PoseStream stream;
+  if (const StreamOptions options = streamOptions(args, settings.stream); options.enabled) {
+    std::string error;
+    if (!ok(stream.open(options, error))) std::fprintf(stderr, "stream: %s\n", error.c_str());
   }
 
   Engine engine(settings);
@@ -75,7 +97,7 @@ int run(const Args& args) {
     meter.tick();
     ++frames;
     if (result.pose) ++reconstructed;
-    const std::string frame = result.name.empty() ? std::to_string(result.index) : result.name;
+    const std::string frame = frameLabel(result);
     if (format == "csv") {
       std::string extra;
       if (with_truth && result.truth) {
@@ -98,6 +120,7 @@ int run(const Args& args) {
       std::string error;
       if (!data_out.write(result, error)) std::fprintf(stderr, "data out stopped: %s\n", error.c_str());
     }
+    stream.send(result);
     std::fflush(stdout);
   }
   if (format == "json") std::printf("\n]\n");
@@ -105,6 +128,10 @@ int run(const Args& args) {
                static_cast<long long>(reconstructed));
   if (meter.hz() > 0) std::fprintf(stderr, "; %.1f Hz at %.0f %% of one core", meter.hz(), meter.cpuPercent());
   std::fprintf(stderr, "\n");
+  if (stream.isActive()) {
+    std::fprintf(stderr, "stream %s\n", stream.report().c_str());
+    if (!stream.problem().empty()) std::fprintf(stderr, "stream: %s\n", stream.problem().c_str());
+  }
   return 0;
 }
 
@@ -112,7 +139,8 @@ const CommandRegistration kRegistration{{
     "reconstruct",
     "detect the target and reconstruct its pose in every frame (CSV or JSON)",
     std::string("usage: imagepro-cli reconstruct [--config FILE] [--format csv|json] [--truth]\n"
-                "                                [--data-out FILE] INPUT\n\n") +
+                "                                [--data-out FILE] [--stream udp://HOST:PORT\n"
+                "                                [--stream-format json|opentrack]] INPUT\n\n") +
         kFrameInputHelp +
         "\n\nOne row per frame: frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm.\n"
         "A frame without a target is a row with the error's name, not a failed command.\n"
@@ -122,7 +150,14 @@ const CommandRegistration kRegistration{{
         "spots or the rim away from where the image has them).\n"
         "  --truth          add the ground-truth pose columns (virtual frames)\n"
         "  --no-pace        run a camera or virtual source as fast as possible, not at its frame rate\n"
-        "  --data-out FILE  also write the full data-out CSV (regions, stage times) to FILE",
+        "  --data-out FILE  also write the full data-out CSV (regions, stage times) to FILE\n"
+        "  --stream udp://HOST:PORT\n"
+        "                   also send every frame as it is made, one UDP datagram each\n"
+        "                   (docs/streaming.md); the settings' stream section when not given.\n"
+        "                   A full socket buffer drops datagrams; the counts and any problem\n"
+        "                   (StreamHostNotFound, StreamUnreachable, StreamRefused) close the summary\n"
+        "  --stream-format FORMAT\n" +
+        choicesHelp<StreamFormat>(),
     {"virtual", "truth", "no-pace"},
     run,
 }};

@@ -80,6 +80,8 @@ class OutputTest : public QObject {
   void screenshotToBadPathShowsError();
   void dataOutWritesEveryFrame();
   void dataOutNeverOverwritesSilently();
+  void streamFromTheDataOutPanel();
+  void streamProblemIsNamedInTheStatusBar();
   void plotsRecordAndExport();
  private:
   std::unique_ptr<MainWindow> window_;

@@ -12,6 +12,7 @@
 #include "support/cli_run.h"
 #include "core/common/atomic_file.h"
 #include "support/test_dirs.h"
+#include "support/udp_receiver.h"
 
 namespace imagepro {
 namespace {
@@ -184,6 +185,51 @@ TEST(CliReconstruction, EstimateD0RecoversTheRenderedImagePlaneDistance) {
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_EQ(lines(r.out).at(1), "blank.png,NoTarget,,,");
   EXPECT_NE(r.err.find("no frame gave an estimate of d0 (blank.png: NoTarget: "), std::string::npos) << r.err;
+}
+
+// --stream: a reader on the loopback address gets one datagram a frame, in order, with
+// the values of the data-out file the same run wrote; the summary counts them.
+TEST(CliReconstruct, StreamsEveryFrameToALoopbackReader) {
+  test::UdpReceiver receiver;
+  const int port = receiver.port();
+  ASSERT_NE(port, 0);
+  const fs::path dir = freshDir("cli_stream");
+  const std::string csv = (dir / "run.csv").string();
+  const CliRun r = cli("reconstruct --virtual --frames 25 --no-pace --data-out " + csv + " --stream udp://127.0.0.1:" +
+                       std::to_string(port));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("stream udp://127.0.0.1:" + std::to_string(port) + " json: 25 sent, 0 dropped"), std::string::npos)
+      << r.err;
+  std::string text, e;
+  ASSERT_TRUE(readWholeFile(csv, text, e)) << e;
+  const auto rows = lines(text);
+  ASSERT_EQ(rows.size(), 26u);
+  const auto datagrams = receiver.drain();  // the run has ended: all are waiting
+  ASSERT_EQ(datagrams.size(), 25u);
+  for (int i = 0; i < 25; ++i) {
+    const auto j = nlohmann::json::parse(datagrams[static_cast<std::size_t>(i)]);
+    const auto fields = csvFields(rows[static_cast<std::size_t>(i) + 1]);
+    EXPECT_EQ(j["frame"], i);
+    EXPECT_EQ(std::to_string(j["frame"].get<int>()), fields[0]);
+    EXPECT_EQ(j["status"], fields[1]);
+    ASSERT_TRUE(j["Tz_mm"].is_number()) << fields[1];
+    EXPECT_NEAR(j["Tz_mm"].get<double>(), std::stod(fields[7]), 0.0);
+  }
+}
+
+TEST(CliReconstruct, StreamProblemsAreNamed) {
+  // A host that does not resolve: the frames still come, the summary names the problem.
+  CliRun r = cli("reconstruct --virtual --frames 3 --no-pace --stream 'udp://no such host!:5005'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(lines(r.out).size(), 4u);
+  EXPECT_NE(r.err.find("0 sent, 3 dropped; StreamHostNotFound"), std::string::npos) << r.err;
+  // A malformed address or format is a usage error.
+  r = cli("reconstruct --virtual --frames 3 --stream udp://127.0.0.1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--stream"), std::string::npos) << r.err;
+  r = cli("reconstruct --virtual --frames 3 --stream udp://127.0.0.1:5005 --stream-format xml");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("opentrack"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -176,8 +176,12 @@ void MainWindow::buildStatusBar() {
   status_source_->setObjectName(QStringLiteral("statusSource"));
   status_rate_->setObjectName(QStringLiteral("statusRate"));
   status_state_->setObjectName(QStringLiteral("statusState"));
+  status_stream_ = new QLabel;
+  status_stream_->setObjectName(QStringLiteral("statusStream"));
+  status_stream_->setVisible(false);
   // A normal widget, so a message (an error, a warning) takes its place for a while.
   statusBar()->addWidget(status_state_, 1);
+  statusBar()->addPermanentWidget(status_stream_);
   statusBar()->addPermanentWidget(status_rate_);
   statusBar()->addPermanentWidget(status_source_);
 }
@@ -228,6 +232,9 @@ void MainWindow::refreshReadouts() {
   status_state_->setStyleSheet(r.status == Status::Ok || r.status == Status::Stopped ? QString()
                                                                                      : QStringLiteral("color: #b00020;"));
   if (!packet.source.isEmpty()) status_source_->setText(packet.source);
+  status_stream_->setVisible(!packet.stream.isEmpty());
+  status_stream_->setText(tr("Stream %1").arg(packet.stream));
+  status_stream_->setStyleSheet(packet.stream_ok ? QString() : QStringLiteral("color: #b00020;"));
   if (histogram_->isVisible()) histogram_->setHistogram(r.histogram, r.threshold);
   if (stage_times_->isVisible()) stage_times_->setTimes(r.times);
 }

@@ -107,6 +107,7 @@ class MainWindow : public QMainWindow {
   RecentFiles* recent_ = nullptr;
   QLabel* status_source_ = nullptr;
   QLabel* status_rate_ = nullptr;
+  QLabel* status_stream_ = nullptr;  // the live stream's counts and status, hidden when it is off
   QLabel* status_state_ = nullptr;
   static constexpr int kReadoutMs = 100;
   QTimer* readout_timer_ = nullptr;

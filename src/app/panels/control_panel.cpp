@@ -14,7 +14,7 @@ namespace imagepro::app {
 ControlPanel::ControlPanel(SettingsBinder& binder, QWidget* parent)
     : QScrollArea(parent),
       source_(new SourcePanel),
-      output_(new OutputPanel),
+      output_(new OutputPanel(binder)),
       calibration_(new CalibrationPanel(binder)),
       column_(new QWidget) {
   setObjectName(QStringLiteral("controlPanel"));

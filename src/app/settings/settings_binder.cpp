@@ -120,4 +120,23 @@ QLineEdit* SettingsBinder::numberEdit(const void* field, std::function<double()>
   return edit;
 }
 
+QLineEdit* SettingsBinder::textEdit(const void* field, std::function<std::string()> get,
+                                    std::function<void(std::string)> set) {
+  auto* edit = new QLineEdit;
+  bindKey(edit, field);
+  addRefresher([edit, get] { edit->setText(QString::fromStdString(get())); });
+  connect(edit, &QLineEdit::editingFinished, this, [this, edit, get, set] {
+    if (refreshing_) return;
+    const std::string v = edit->text().trimmed().toStdString();
+    if (v.empty()) {
+      edit->setText(QString::fromStdString(get()));
+      return;
+    }
+    if (v == get()) return;
+    set(v);
+    edited();
+  });
+  return edit;
+}
+
 }  // namespace imagepro::app

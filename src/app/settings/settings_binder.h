@@ -59,6 +59,10 @@ class SettingsBinder : public QObject {
   // Free text for numbers too small or too wide for a spin box (distortion coefficients).
   template <class Field>
   QLineEdit* number(Field field);
+  // A line of text (a host name); an emptied line is not taken (the table wants text) and
+  // shows the value again.
+  template <class Field>
+  QLineEdit* text(Field field);
 
   // Writes the whole model into the widgets, emitting nothing.
   void refresh();
@@ -76,6 +80,7 @@ class SettingsBinder : public QObject {
   QWidget* radioBox(std::vector<std::pair<QString, QString>> items, std::function<int()> get,
                     std::function<void(int)> set);
   QLineEdit* numberEdit(const void* field, std::function<double()> get, std::function<void(double)> set);
+  QLineEdit* textEdit(const void* field, std::function<std::string()> get, std::function<void(std::string)> set);
 
   Settings& model_;
   std::vector<std::function<void()>> refreshers_;
@@ -171,6 +176,12 @@ template <class Field>
 QLineEdit* SettingsBinder::number(Field field) {
   return numberEdit(&field(model_), [this, field] { return static_cast<double>(field(model_)); },
                     [this, field](double v) { field(model_) = v; });
+}
+
+template <class Field>
+QLineEdit* SettingsBinder::text(Field field) {
+  return textEdit(&field(model_), [this, field] { return std::string(field(model_)); },
+                  [this, field](std::string v) { field(model_) = std::move(v); });
 }
 
 }  // namespace imagepro::app

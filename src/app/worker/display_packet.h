@@ -40,6 +40,8 @@ struct DisplayPacket {
   double hz = 0.0;                        // frames processed per second
   double cpu_percent = 0.0;               // worker thread CPU time over wall time
   QString source;                         // the source's description
+  QString stream;                         // the live stream's report (PoseStream::report), empty when off
+  bool stream_ok = true;                  // its status is Ok
 };
 
 using DisplayPacketPtr = std::shared_ptr<const DisplayPacket>;

@@ -56,6 +56,7 @@ Worker::Worker(const Settings& settings, QObject* parent)
   timer_->setTimerType(Qt::PreciseTimer);
   connect(timer_, &QTimer::timeout, this, &Worker::tick);
   history_.reserve(256);
+  applyStream(settings.stream);
 }
 
 Worker::~Worker() = default;
@@ -218,6 +219,7 @@ bool Worker::applyPending() {
   }
   if (settings) {
     engine_.setSettings(*settings);
+    applyStream(settings->stream);
     if (source_ && !updateSource(*source_, kind_, *settings)) {
       // A camera asked for another device, size or rate: opened anew, or stopped with the error.
       if (!ensureSource(kind_, {})) {
@@ -231,6 +233,16 @@ bool Worker::applyPending() {
   if (source_)
     for (VirtualKey key : keys) pressSourceKey(*source_, kind_, key);
   return settings.has_value();
+}
+
+void Worker::applyStream(const StreamOptions& options) {
+  if (!options.enabled) {
+    stream_.close();
+    return;
+  }
+  if (stream_.isActive() && stream_.options() == options) return;
+  std::string error;
+  if (!ok(stream_.open(options, error))) emit errorOccurred(QStringLiteral("Stream: ") + QString::fromStdString(error));
 }
 
 void Worker::onIdleUpdate() {
@@ -332,6 +344,7 @@ void Worker::afterFrame() {
       emit dataOutChanged(QString());
     }
   }
+  stream_.send(result_);  // never waits: a full buffer drops the datagram and counts it
 }
 
 void Worker::publish() {
@@ -356,6 +369,10 @@ void Worker::publish() {
   meters.cpu_percent = cpu_percent_;
   meters.source = source_ ? QString::fromStdString(source_->describe()) : QString();
   buildPacket(engine_, result_, meters, *packet);
+  if (stream_.isActive()) {
+    packet->stream = QString::fromStdString(stream_.report());
+    packet->stream_ok = ok(stream_.status());
+  }
   packet->history.swap(history_);
   history_.clear();
   emit packetReady(std::move(packet));

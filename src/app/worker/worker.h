@@ -20,6 +20,7 @@
 #include "app/main_window/virtual_keys.h"
 #include "core/pipeline/data_out.h"
 #include "core/pipeline/engine.h"
+#include "core/pipeline/pose_stream.h"
 #include "core/settings/settings.h"
 #include "core/source/source.h"
 
@@ -89,6 +90,8 @@ class Worker : public QObject {
   void setRunning(bool running);
   bool ensureSource(SourceKind kind, const QStringList& paths);
   void reportSourceError(Status status);
+  // Opens, reopens or closes the live stream when its settings section changed.
+  void applyStream(const StreamOptions& options);
 
   Engine engine_;
   std::unique_ptr<FrameSource> source_;
@@ -99,6 +102,7 @@ class Worker : public QObject {
   FrameResult step_result_;  // scratch for the next one
   bool have_result_ = false;
   DataOut data_out_;
+  PoseStream stream_;
   QTimer* timer_ = nullptr;
   std::chrono::steady_clock::time_point next_due_{};
 

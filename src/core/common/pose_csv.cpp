@@ -4,8 +4,22 @@
 
 namespace imagepro {
 
+std::array<double, 6> poseColumnValues(const Pose& p) {
+  return {p.rx_deg, p.ry_deg, p.rz_deg, p.tx_mm, p.ty_mm, p.tz_mm};
+}
+
+std::string poseNumber(double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6f", value);
+  return buf;
+}
+
 std::string poseCsvHeader(std::string_view extra_columns) {
-  std::string h = "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm";
+  std::string h = "frame,status";
+  for (std::string_view name : kPoseColumnNames) {
+    h += ',';
+    h += name;
+  }
   if (!extra_columns.empty()) {
     h += ',';
     h += extra_columns;
@@ -30,10 +44,7 @@ std::string poseCsvRow(std::string_view frame, Status status, const std::optiona
   row += ',';
   row += statusName(status);
   if (ok(status) && pose) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, ",%.6f,%.6f,%.6f,%.6f,%.6f,%.6f", pose->rx_deg, pose->ry_deg, pose->rz_deg,
-                  pose->tx_mm, pose->ty_mm, pose->tz_mm);
-    row += buf;
+    for (double v : poseColumnValues(*pose)) row += ',' + poseNumber(v);
   } else {
     row += ",,,,,,";
   }

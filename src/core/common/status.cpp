@@ -59,6 +59,9 @@ StatusText text(Status s) {
     case Status::InvalidPattern: return {"InvalidPattern", "the calibration pattern's description is impossible: check its rows, columns, spacing and dot diameter"};
     case Status::GridNotFound: return {"GridNotFound", "the dot grid of the pattern was not found in the image: the whole grid must be in view, sharp and not too small"};
     case Status::TooFewViews: return {"TooFewViews", "fewer than three images show the pattern: take 4 to 10 views of it, tilted differently"};
+    case Status::StreamHostNotFound: return {"StreamHostNotFound", "the stream's host is neither an address nor a name that resolves: check the host in the stream settings"};
+    case Status::StreamUnreachable: return {"StreamUnreachable", "the stream's host cannot be reached from here (no route or the network refuses): datagrams are dropped"};
+    case Status::StreamRefused: return {"StreamRefused", "nothing listens on the stream's port at its host yet: datagrams are dropped until a reader starts"};
     case Status::TooFewTargets: return {"TooFewTargets", "fewer targets were reconstructed in the frame than the measurement needs"};
     case Status::TooFewFrames: return {"TooFewFrames", "too few frames with a reconstructed pose for the analysis"};
     case Status::NoSwing: return {"NoSwing", "the target does not swing: no repeated oscillation stands out from the noise"};

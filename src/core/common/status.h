@@ -57,6 +57,10 @@ enum class Status : std::uint8_t {
   InvalidPattern,      // a calibration pattern's description cannot be drawn or found (rows 0, spacing <= 0, ...)
   GridNotFound,        // the image shows no dot grid of the pattern's description
   TooFewViews,         // fewer usable views of the pattern than the calibration needs
+  // live pose stream (core/pipeline/pose_stream.h)
+  StreamHostNotFound,  // the stream's host is not a valid address and no name resolves to it
+  StreamUnreachable,   // no route to the stream's host, or the network refuses to send there
+  StreamRefused,       // the host answers that nothing listens on the stream's port
   // analysis (case studies, thesis 5.3)
   TooFewTargets,       // fewer targets in the frame than the measurement needs
   TooFewFrames,        // too few frames with a pose for the analysis

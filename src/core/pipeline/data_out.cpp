@@ -47,17 +47,14 @@ std::string DataOut::header() {
 }
 
 std::string DataOut::row(const FrameResult& r) {
-  char ts[32];
-  std::snprintf(ts, sizeof ts, "%.6f", r.timestamp_s);
-  std::string extra = ts;
+  std::string extra = poseNumber(r.timestamp_s);
   extra += ',' + regionColumns(r.search_region) + ',' + regionColumns(r.detected_region);
   for (double us : r.times.us) {
     char buf[32];
     std::snprintf(buf, sizeof buf, ",%.1f", us);
     extra += buf;
   }
-  const std::string frame = r.name.empty() ? std::to_string(r.index) : r.name;
-  return poseCsvRow(frame, r.status, r.pose, extra);
+  return poseCsvRow(frameLabel(r), r.status, r.pose, extra);
 }
 
 Status DataOut::open(const std::string& path, ExistingFile existing, std::string& error) {

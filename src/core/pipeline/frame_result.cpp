@@ -23,4 +23,6 @@ double StageTimes::total() const {
   return sum;
 }
 
+std::string frameLabel(const FrameResult& r) { return r.name.empty() ? std::to_string(r.index) : r.name; }
+
 }  // namespace imagepro

@@ -66,4 +66,7 @@ struct FrameResult {
   StageTimes times;
 };
 
+// The frame's "frame" column (docs/conventions.md): the file name for file input, the index otherwise.
+std::string frameLabel(const FrameResult& result);
+
 }  // namespace imagepro

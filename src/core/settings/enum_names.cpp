@@ -107,6 +107,13 @@ constexpr EnumEntry<PoseAxis> kAxis[] = {
     {PoseAxis::Tx, "tx", "Tx", "translation along x, mm"}, {PoseAxis::Ty, "ty", "Ty", "translation along y, mm"},
     {PoseAxis::Tz, "tz", "Tz", "translation along z, mm"}, {PoseAxis::Rx, "rx", "Rx", "rotation about x, degrees"},
     {PoseAxis::Ry, "ry", "Ry", "rotation about y, degrees"}, {PoseAxis::Rz, "rz", "Rz", "rotation about z, degrees"}};
+constexpr EnumEntry<StreamFormat> kStreamFormat[] = {
+    {StreamFormat::Json, "json", "JSON",
+     "one JSON object a datagram: frame, timestamp, status and the six parameters in mm and degrees, with every "
+     "target's when there are several"},
+    {StreamFormat::OpenTrack, "opentrack", "OpenTrack",
+     "OpenTrack's \"UDP over network\" input: x, y, z in cm and yaw, pitch, roll in degrees as six little-endian "
+     "doubles, frames with a pose only"}};
 }  // namespace
 
 std::span<const EnumEntry<ThresholdMethod>> enumEntries(ThresholdMethod) { return kThreshold; }
@@ -124,5 +131,6 @@ std::span<const EnumEntry<DisplayOptions::Target>> enumEntries(DisplayOptions::T
 std::span<const EnumEntry<RenderMode>> enumEntries(RenderMode) { return kRender; }
 std::span<const EnumEntry<MotionKind>> enumEntries(MotionKind) { return kMotion; }
 std::span<const EnumEntry<PoseAxis>> enumEntries(PoseAxis) { return kAxis; }
+std::span<const EnumEntry<StreamFormat>> enumEntries(StreamFormat) { return kStreamFormat; }
 
 }  // namespace imagepro

@@ -35,6 +35,7 @@ std::span<const EnumEntry<DisplayOptions::Target>> enumEntries(DisplayOptions::T
 std::span<const EnumEntry<RenderMode>> enumEntries(RenderMode);
 std::span<const EnumEntry<MotionKind>> enumEntries(MotionKind);
 std::span<const EnumEntry<PoseAxis>> enumEntries(PoseAxis);
+std::span<const EnumEntry<StreamFormat>> enumEntries(StreamFormat);
 
 // The value's row of its table; nullptr for a value outside it (a cast integer).
 template <class E>

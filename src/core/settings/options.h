@@ -255,4 +255,19 @@ struct CameraSourceOptions {
   std::map<std::string, std::int64_t> controls;  // control key (imagepro-cli devices) -> value
 };
 
+// The live pose stream (docs/streaming.md): every frame's result as one UDP datagram to
+// host:port, for programs that want the pose as it is made.
+enum class StreamFormat : std::uint8_t {
+  Json,       // one JSON object a datagram: frame, timestamp, status, the six parameters
+  OpenTrack,  // OpenTrack's "UDP over network" input: six little-endian doubles
+};
+
+struct StreamOptions {
+  bool enabled = false;
+  std::string host = "127.0.0.1";  // a name, an IPv4 or an IPv6 address
+  int port = 5005;
+  StreamFormat format = StreamFormat::Json;
+  bool operator==(const StreamOptions&) const = default;
+};
+
 }  // namespace imagepro

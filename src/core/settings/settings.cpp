@@ -96,6 +96,13 @@ void visitSettings(Visitor& v, Settings& s) {
     v.field("frame_rate_hz", o.frame_rate_hz, 0.0, 1e6);
     v.field("controls", o.controls);
   });
+  v.object("stream", [&] {
+    StreamOptions& o = s.stream;
+    v.field("enabled", o.enabled);
+    v.field("host", o.host);
+    v.field("port", o.port, 1, 65535);
+    v.field("format", o.format);
+  });
   v.object("pipeline", [&] {
     PipelineOptions& p = s.pipeline;
     v.object("threshold", [&] {

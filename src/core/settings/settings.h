@@ -1,6 +1,7 @@
 #pragma once
 // The settings file (docs/conventions.md): one JSON document with the camera, the
-// target, the calibration pattern, the virtual scene and every pipeline option.
+// target, the calibration pattern, the virtual scene, the live pose stream and every
+// pipeline option.
 // Unknown keys and wrong types are errors naming the key; a missing key keeps its
 // default; saving is atomic, so a failed save never damages the old file.
 #include <string>
@@ -20,6 +21,7 @@ struct Settings {
   PatternGeometry pattern;
   VirtualSceneOptions virtual_scene;
   CameraSourceOptions camera_source;
+  StreamOptions stream;
   PipelineOptions pipeline;
 };
 

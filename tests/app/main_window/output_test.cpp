@@ -1,19 +1,33 @@
 // Screenshot writes the results area as PNG; Data Out writes the pose CSV of every
-// processed frame and never replaces a file unasked; the plots record and export.
+// processed frame and never replaces a file unasked; the stream sends every frame to
+// a reader and names its problems; the plots record and export.
+#include <QCheckBox>
+#include <QComboBox>
 #include <QFile>
 #include <QFileInfo>
 #include <QImage>
+#include <QLabel>
+#include <QLineEdit>
+#include <QSpinBox>
 #include <QStatusBar>
 #include <QTest>
 
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <iterator>
+
 #include "app/main_window/frame_view.h"
 #include "app/main_window/main_window.h"
+#include "app/panels/control_panel.h"
+#include "app/panels/output_panel.h"
 #include "app/plots/pose_plots.h"
 #include "app/worker/worker.h"
 #include "app_test_classes.h"
 #include "app_test_support.h"
 #include "core/common/pose_csv.h"
 #include "core/pipeline/data_out.h"
+#include "support/udp_receiver.h"
 
 namespace imagepro::app::test {
 
@@ -23,6 +37,22 @@ QStringList readLines(const QString& path) {
   QFile f(path);
   if (!f.open(QIODevice::ReadOnly)) return {};
   return QString::fromUtf8(f.readAll()).split(QLatin1Char('\n'), Qt::SkipEmptyParts);
+}
+
+// Sets the stream's destination in the Data Out panel and ticks its box, as a user would.
+void switchStreamOn(MainWindow& w, const QString& host, int port) {
+  QWidget* panel = w.findChild<OutputPanel*>();
+  auto* host_edit = panel->findChild<QLineEdit*>(QStringLiteral("streamHost"));
+  auto* port_box = panel->findChild<QSpinBox*>(QStringLiteral("streamPort"));
+  QVERIFY(host_edit && port_box && panel->findChild<QComboBox*>(QStringLiteral("streamFormat")));
+  QCOMPARE(host_edit->property("settingKey").toString(), QStringLiteral("stream.host"));
+  QCOMPARE(port_box->maximum(), 65535);  // the settings table's range
+  host_edit->setText(host);
+  emit host_edit->editingFinished();
+  port_box->setValue(port);
+  QCheckBox* box = panel->findChild<QCheckBox*>(QStringLiteral("stream"));
+  QVERIFY(box && !box->isChecked());  // off by default
+  box->click();
 }
 
 }  // namespace
@@ -91,6 +121,50 @@ void OutputTest::dataOutWritesEveryFrame() {
     QCOMPARE(cols[0].toLongLong(), static_cast<long long>(i - 1));
     if (cols[1] == QStringLiteral("ok")) QVERIFY(cols[7].toDouble() > 500.0);  // Tz near the virtual 800 mm
   }
+}
+
+void OutputTest::streamFromTheDataOutPanel() {
+  MainWindow& w = *window_;
+  imagepro::test::UdpReceiver reader;
+  QVERIFY(reader.port() != 0);
+  switchStreamOn(w, QStringLiteral("127.0.0.1"), reader.port());
+  QTRY_VERIFY(w.worker()->appliedSettings().stream.enabled);
+  w.selectSource(SourceKind::Virtual);
+  w.startSource();
+  std::vector<std::string> got;
+  QTRY_VERIFY_WITH_TIMEOUT((std::ranges::move(reader.drain(), std::back_inserter(got)), got.size() >= 20), 10000);
+  // One datagram a frame, in order, from the first frame on.
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    const auto j = nlohmann::json::parse(got[i]);
+    QCOMPARE(j["frame"].get<std::int64_t>(), static_cast<std::int64_t>(i));
+    QCOMPARE(j["status"].get<std::string>(), std::string("ok"));
+  }
+  auto* label = w.statusBar()->findChild<QLabel*>(QStringLiteral("statusStream"));
+  QVERIFY(label);
+  const QString expected = QStringLiteral("Stream udp://127.0.0.1:%1 json: ").arg(reader.port());
+  QTRY_VERIFY_WITH_TIMEOUT(label->isVisible() && label->text().startsWith(expected), 5000);
+  QVERIFY2(label->text().contains(QStringLiteral(" sent, 0 dropped")), qPrintable(label->text()));
+  // Switched off, the sending stops and the label goes.
+  w.findChild<OutputPanel*>()->streamBox()->click();
+  QTRY_VERIFY_WITH_TIMEOUT(!label->isVisible(), 5000);
+  reader.drain();
+  QTest::qWait(200);
+  QVERIFY(reader.drain().empty());
+  w.stopSource();
+}
+
+void OutputTest::streamProblemIsNamedInTheStatusBar() {
+  MainWindow& w = *window_;
+  switchStreamOn(w, QStringLiteral("no such host!"), 5005);
+  QTRY_VERIFY_WITH_TIMEOUT(w.lastError().contains(QStringLiteral("no such host!")), 5000);
+  w.selectSource(SourceKind::Virtual);
+  w.startSource();
+  QTRY_VERIFY_WITH_TIMEOUT(w.worker()->framesProcessed() >= 5, 10000);
+  auto* label = w.statusBar()->findChild<QLabel*>(QStringLiteral("statusStream"));
+  QTRY_VERIFY_WITH_TIMEOUT(label->text().contains(QStringLiteral("StreamHostNotFound")), 5000);
+  QVERIFY2(label->text().contains(QStringLiteral("0 sent")), qPrintable(label->text()));
+  QVERIFY(label->styleSheet().contains(QStringLiteral("color")));  // shown as a problem
+  w.stopSource();
 }
 
 void OutputTest::dataOutNeverOverwritesSilently() {

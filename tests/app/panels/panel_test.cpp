@@ -328,7 +328,7 @@ void PanelTest::rangesComeFromTheSettingsTable() {
       QVERIFY2(!key.isEmpty(), qPrintable(widget->objectName() + QStringLiteral(" is bound to no settings key")));
       const SettingKey* k = findSettingKey(key.toStdString());
       QVERIFY2(k, qPrintable(key));
-      if (!number) continue;
+      if (!number || k->type == SettingKey::Type::Text) continue;  // a host name is text, not a number
       const QString problem = rangeProblem(widget, *k);
       QVERIFY2(problem.isEmpty(), qPrintable(problem));
       ++numbers;

@@ -84,6 +84,46 @@ TEST(Settings, CameraSourceErrorsNameTheKey) {
   EXPECT_NE(loadError(R"({"camera_source": {"fps": 30}})").find("camera_source.fps: unknown key"), std::string::npos);
 }
 
+TEST(Settings, StreamRoundTrip) {
+  // Off by default; switched on it sends to 127.0.0.1:5005 as JSON.
+  const StreamOptions defaults;
+  EXPECT_FALSE(defaults.enabled);
+  EXPECT_EQ(defaults.host, "127.0.0.1");
+  EXPECT_EQ(defaults.port, 5005);
+  EXPECT_EQ(defaults.format, StreamFormat::Json);
+  Settings a;
+  a.stream = {true, "::1", 4242, StreamFormat::OpenTrack};
+  const std::string text = settingsToJson(a);
+  Settings b;
+  std::string err;
+  ASSERT_EQ(settingsFromJson(text, b, err), Status::Ok) << err;
+  EXPECT_EQ(b.stream, a.stream);
+  EXPECT_EQ(settingsToJson(b), text);
+  ASSERT_EQ(settingsFromJson(R"({"stream": {"enabled": true}})", b = Settings{}, err), Status::Ok) << err;
+  EXPECT_EQ(b.stream.host, "127.0.0.1");
+  EXPECT_EQ(b.stream.port, 5005);
+}
+
+TEST(Settings, StreamErrorsNameTheKey) {
+  EXPECT_NE(loadError(R"({"stream": {"port": 0}})").find("stream.port: value 0 out of range [1, 65535]"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"stream": {"port": 65536}})").find("stream.port"), std::string::npos);
+  EXPECT_NE(loadError(R"({"stream": {"host": ""}})").find("stream.host: expected a non-empty string"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"stream": {"format": "xml"}})").find("stream.format: unknown value \"xml\" (expected one of: json, opentrack)"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"stream": {"enabled": 1}})").find("stream.enabled: expected true or false"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"stream": {"url": "udp://a:1"}})").find("stream.url: unknown key"), std::string::npos);
+  const SettingKey* port = findSettingKey("stream.port");
+  ASSERT_NE(port, nullptr);
+  EXPECT_EQ(port->type, SettingKey::Type::WholeNumber);
+  EXPECT_EQ(port->lo, 1);
+  EXPECT_EQ(port->hi, 65535);
+  ASSERT_NE(findSettingKey("stream.format"), nullptr);
+  EXPECT_EQ(findSettingKey("stream.format")->choices.size(), 2u);
+}
+
 TEST(Settings, ArchitectureExampleLoads) {
   const char* text = R"({
     "camera": {"width": 640, "height": 480, "pixel_size_mm": [0.01, 0.01],
@@ -262,6 +302,7 @@ TEST(EnumNames, EveryValueHasAKeyANameAndADescription) {
   check(EllipseMethod{}), check(FitAcceptRule{}), check(ContourMode{}), check(TrackingMode{});
   check(ApplicationLevel{}), check(DisplayOptions::Background{}), check(DisplayOptions::Edges{});
   check(DisplayOptions::Target{}), check(RenderMode{}), check(MotionKind{}), check(PoseAxis{});
+  check(StreamFormat{});
   // The thesis's names (appendix A), not the file's keys.
   EXPECT_EQ(enumLabel(ThresholdMethod::AtMod), "AT-Mod");
   EXPECT_EQ(enumLabel(ConnectivityMethod::CN1), "CN1");
