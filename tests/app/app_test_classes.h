@@ -130,6 +130,7 @@ class AnalysisWindowTest : public QObject {
   void virtualPendulumGivesG();
   void harmonicFitFollowsThePendulum();
   void dataOutFileGivesTheCliNumbers();
+  void stillAndSwingFilesGiveTheCliNumbers();
   void brokenFilesGiveNamedErrors();
   void virtualTwoTargetsHaveSmallErrors();
   void cancelStopsTheRun();
