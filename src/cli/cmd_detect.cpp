@@ -86,7 +86,7 @@ int run(const Args& args) {
   const EllipseOptions& eo = settings.pipeline.ellipse;
   const std::string method(enumName(eo.method));
   const bool csv = format == "csv";
-  if (csv) std::printf("frame,status,cx,cy,a,b,angle_deg,fit_error,method\n");
+  if (csv) std::printf("frame,status,cx,cy,a,b,angle_deg,fit_error,method,bennett_score,bennett_quality,bennett_symmetry_px\n");
   Stage st;
   cv::Mat overlay;
   UniqueNames overlayNames;
@@ -103,14 +103,19 @@ int run(const Args& args) {
                    problem.empty() ? std::string(statusMessage(status)).c_str() : problem.c_str());
     }
     if (!found) {
-      if (csv) std::printf("%s,%s,,,,,,,%s\n", csvField(file).c_str(), name.c_str(), method.c_str());
+      if (csv) std::printf("%s,%s,,,,,,,%s,,,\n", csvField(file).c_str(), name.c_str(), method.c_str());
       else std::printf("%s: %s (%s)\n", file.c_str(), name.c_str(), problem.empty() ? std::string(statusMessage(status)).c_str() : problem.c_str());
     }
     for (const auto& d : found ? st.chain.detections : std::vector<TargetDetection>{}) {
       const Ellipse& e = d.ellipse;
       if (csv) {
-        std::printf("%s,%s,%.3f,%.3f,%.3f,%.3f,%.2f,%.6g,%s\n", csvField(file).c_str(), name.c_str(), e.cx, e.cy, e.a,
+        std::printf("%s,%s,%.3f,%.3f,%.3f,%.3f,%.2f,%.6g,%s", csvField(file).c_str(), name.c_str(), e.cx, e.cy, e.a,
                     e.b, e.angle_deg, fitError(eo, d), method.c_str());
+        // Bennett's accumulator at the peak (thesis 2.6.1): empty for the direct fit.
+        if (eo.method == EllipseMethod::Bennett)
+          std::printf(",%.6g,%.6g,%.2f\n", d.bennett_score, d.bennett_quality, d.bennett_symmetry);
+        else
+          std::printf(",,,\n");
       } else {
         std::printf("%s: %s centre (%.2f, %.2f) semi-axes %.2f x %.2f angle %.1f deg, %s %.4g%s%s\n", file.c_str(),
                     name.c_str(), e.cx, e.cy, e.a, e.b, e.angle_deg,
@@ -145,9 +150,10 @@ const CommandRegistration kRegistration{{
     "folders (their images in natural order) or text files listing paths.\n"
     "  --method M    the ellipse detection method (default: the settings' ellipse.method):\n" +
     choicesHelp<EllipseMethod>() +
-    "  --format F    csv (default): frame,status,cx,cy,a,b,angle_deg,fit_error,method\n"
-    "                with status ok, AmbiguousTarget (one row per target) or the\n"
-    "                error's name and the ellipse columns empty; text: one line each\n"
+    "  --format F    csv (default): frame,status,cx,cy,a,b,angle_deg,fit_error,method,\n"
+    "                bennett_score,bennett_quality,bennett_symmetry_px with status ok,\n"
+    "                AmbiguousTarget (one row per target) or the error's name and the\n"
+    "                ellipse columns empty; text: one line each\n"
     "  --overlay DIR write DIR/<name>.png for every image read: accepted ellipses in\n"
     "                yellow, the target in green (red when ambiguous), its spots in\n"
     "                blue. <name> is the image's file name without extension, with\n"
@@ -155,7 +161,8 @@ const CommandRegistration kRegistration{{
     "                name (e.g. from another folder), so no overlay replaces another\n"
     "cx, cy, a, b: centre and semi-axes in pixels; angle_deg: major axis from +u\n"
     "towards +v; fit_error: E_rel (eq. 2.42) or the mean Sampson distance in pixels,\n"
-    "as the settings' ellipse.accept_rule. An image that cannot be read (missing,\n"
+    "as the settings' ellipse.accept_rule; bennett_*: with --method bennett, the path's\n"
+    "accumulator score, quality factor and symmetry radius (thesis 2.6.1), else empty. An image that cannot be read (missing,\n"
     "corrupt, a folder or list without images) is reported in its row (FileNotFound,\n"
     "FileUnreadable) and named with the reason on stderr, and the others are still\n"
     "processed; the exit status is 0 unless\n"

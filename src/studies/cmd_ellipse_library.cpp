@@ -45,6 +45,7 @@ Settings settingsFor(const Settings& base, Rule rule, int manual_threshold) {
     e.bennett_min_quality = 255.0;
     e.bennett_max_quality = 375.0;
     e.bennett_min_peak_fraction = 0.0;
+    e.bennett_max_relative_error = 1e9;  // the thesis's rules alone
   }
   if (manual_threshold >= 0) {  // t125.json
     s.pipeline.threshold.method = ThresholdMethod::Manual;
@@ -113,7 +114,7 @@ std::string methodsTable(const Settings& base) {
       {"direct fit, E_rel ≤ 0.02 + trace (default)", Rule::Default},
       {"direct fit, Sampson ≤ 0.5 px + trace", Rule::Sampson},
       {"Bennett", Rule::Bennett},
-      {"Bennett at the thesis's thresholds (score 550-840, quality 255-375, no peak-share rule)", Rule::BennettThesis},
+      {"Bennett at the thesis's thresholds (score 550-840, quality 255-375, no peak-share or fit rule)", Rule::BennettThesis},
   };
   std::string md =
       "| method | ellipses found | rectangles accepted | source |\n"

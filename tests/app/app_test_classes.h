@@ -133,6 +133,7 @@ class AnalysisWindowTest : public QObject {
   void virtualPendulumGivesG();
   void harmonicFitFollowsThePendulum();
   void dataOutFileGivesTheCliNumbers();
+  void stillAndSwingFilesGiveTheCliNumbers();
   void brokenFilesGiveNamedErrors();
   void virtualTwoTargetsHaveSmallErrors();
   void cancelStopsTheRun();

@@ -49,6 +49,29 @@ TEST(CliPendulum, MissingInputNamesTheFileAndTheReason) {
   }
 }
 
+// Several runs in one table (thesis table 5.3): a row each, the mean and the spread; a
+// run that fails names its error in its row and stays out of the mean.
+TEST(CliPendulum, RunsTableAndStillSwingUsage) {
+  const CliRun r = cli("pendulum --virtual --frames 100 --still-positions 5 --still-frames 1 --runs 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 6u) << r.out;
+  EXPECT_EQ(rows[2].rfind("| seed 1 | 44", 0), 0u) << rows[2];
+  EXPECT_EQ(rows[4].rfind("| mean of 2 | ", 0), 0u) << rows[4];
+  EXPECT_EQ(rows[5].rfind("| standard deviation | ", 0), 0u) << rows[5];
+
+  const fs::path dir = freshDir("cli_pendulum_runs");
+  const std::string missing = (dir / "none.csv").string();
+  const CliRun failed = cli("pendulum --still " + missing + "," + missing + " --swing " + missing + "," + missing);
+  EXPECT_EQ(failed.exit_code, 1) << failed.out;  // no run gives an answer
+  EXPECT_NE(failed.out.find("| 1 | still: FileNotFound"), std::string::npos) << failed.out;
+
+  for (const std::string args : {"--still a.csv", "--swing a.csv", "--still a.csv,b.csv --swing c.csv",
+                                 "--still a.csv --swing b.csv --virtual", "--interlaced a.csv",
+                                 "--virtual --still-frames 2", "--virtual --period-method peaks"})
+    EXPECT_EQ(cli("pendulum " + args).exit_code, 2) << args;
+}
+
 TEST(CliTwoTargets, CsvReplacesTheOldFileWhole) {
   const fs::path dir = freshDir("cli_two_targets_csv");
   const fs::path csv = dir / "two.csv", other_name = dir / "kept.csv";

@@ -249,6 +249,45 @@ TEST(CliThreshold, BadInputsAreNamedOnStderrAndExitOne) {
 
 // ---------------------------------------------------------------- edges
 
+// Bennett on the samples: the target of every sample that has one, and no target in
+// sample06, whose 67 x 8 px bar passes rules 1-3 but fits no ellipse (E_rel 0.043).
+TEST(CliDetect, BennettFindsNoTargetInTheTargetFreeSample) {
+  for (const char* method : {"bennett", "direct-fit"}) {
+    const CliRun r = cli(std::string("detect --format csv --method ") + method + " " + kSamples);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto rows = lines(r.out);
+    ASSERT_EQ(rows.size(), 1 + pngsIn(kSamples).size()) << r.out;
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+      const auto f = fields(rows[i]);
+      ASSERT_GE(f.size(), 2u) << rows[i];
+      const bool target_free = fileName(f[0]) == "sample06_no_target.png";
+      EXPECT_EQ(f[1], target_free ? "NoTarget" : "ok") << method << ": " << rows[i];
+      ASSERT_EQ(f.size(), 12u) << rows[i];
+      if (target_free) continue;
+      EXPECT_LT(number(f[7]), 0.001) << rows[i];
+      // The accumulator's score, quality and symmetry: Bennett's rows only.
+      if (std::string(method) == "bennett") {
+        EXPECT_GE(number(f[9]), 340.0) << rows[i];
+        EXPECT_GT(number(f[10]), 0.0) << rows[i];
+        EXPECT_GT(number(f[11]), 0.0) << rows[i];
+      } else {
+        EXPECT_EQ(f[9] + f[10] + f[11], "") << rows[i];
+      }
+    }
+  }
+  // The thesis's rules alone accept the bar.
+  const fs::path dir = freshDir("cli_detect_bennett_thesis_rules");
+  writeFile(dir / "rules.json", R"({"pipeline": {"ellipse": {"bennett_max_relative_error": 1e9}}})");
+  const CliRun r = cli("detect --format csv --method bennett --config " + (dir / "rules.json").string() + " " +
+                       kSamples + "/sample06_no_target.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 2u) << r.out;
+  const auto f = fields(rows[1]);
+  ASSERT_EQ(f[1], "ok") << rows[1];
+  EXPECT_GT(number(f[7]), 0.02) << rows[1];
+}
+
 TEST(CliEdges, WritesTheStageImagesAndASummaryRow) {
   const fs::path dir = freshDir("cli_stages_edges");
   ASSERT_EQ(cli("render --out " + (dir / "in").string() + " --frames 1 --mode binary --pose 0,0,0,0,0,800").exit_code,
@@ -457,11 +496,11 @@ TEST_F(CliLibrary, DetectFindsTheEllipsesAndRejectsTheRectangles) {
   const auto rows = lines(r.out);
   const std::size_t ellipses = std::size(kEllipseRows), rectangles = std::size(kRectangleRows);
   ASSERT_EQ(rows.size(), 1 + ellipses + rectangles + 1) << r.out;
-  EXPECT_EQ(rows[0], "frame,status,cx,cy,a,b,angle_deg,fit_error,method");
+  EXPECT_EQ(rows[0], "frame,status,cx,cy,a,b,angle_deg,fit_error,method,bennett_score,bennett_quality,bennett_symmetry_px");
   for (std::size_t i = 0; i < ellipses; ++i) {
     const TableRow& t = kEllipseRows[i];
     const auto f = fields(rows[1 + i]);
-    ASSERT_EQ(f.size(), 9u) << rows[1 + i];
+    ASSERT_EQ(f.size(), 12u) << rows[1 + i];
     EXPECT_EQ(fileName(f[0]), libraryFile(t));
     ASSERT_EQ(f[1], "ok") << rows[1 + i];
     EXPECT_NEAR(number(f[2]), 319.5, 1.0) << rows[1 + i];
@@ -487,7 +526,7 @@ TEST_F(CliLibrary, DetectFindsTheEllipsesAndRejectsTheRectangles) {
     EXPECT_NE(f[1], "AmbiguousTarget") << rows[1 + ellipses + i];
     EXPECT_EQ(f[2], "") << rows[1 + ellipses + i];
   }
-  EXPECT_EQ(rows.back(), missing + ",FileNotFound,,,,,,,direct-fit");
+  EXPECT_EQ(rows.back(), missing + ",FileNotFound,,,,,,,direct-fit,,,");
 }
 
 TEST_F(CliLibrary, DetectFoldersListsAndOverlays) {

@@ -100,7 +100,7 @@ void AnalysisWindow::stopCollecting() {
   }
   auto out = std::make_shared<PendulumStudyResult>();
   out->samples = std::move(live_samples_);
-  out->amplitude_correction = amplitude_correction_->isChecked();
+  out->options = pendulumOptions();
   retimeSamples(out->samples, live_indices_, rate_->value());
   live_samples_.clear();
   live_indices_.clear();

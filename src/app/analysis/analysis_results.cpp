@@ -63,17 +63,31 @@ void AnalysisWindow::showPendulum() {
   std::vector<QStringList> rows;
   rows.push_back({tr("Frames"), tr("%1 (%2 with a pose)").arg(a.frames).arg(a.valid_frames), QString(), QString(),
                   QString()});
+  if (a.length_from_still)
+    rows.push_back({tr("Still frames (the length)"), tr("%1 (%2 with a pose)").arg(a.still_frames).arg(a.still_valid_frames),
+                    QString(), QString(), QString()});
   rows.push_back({tr("Length [mm]"), number(a.length_mm, 2), number(a.length_sigma_mm, 2),
                   t ? number(r.truth.length_mm, 2) : QString(),
                   t ? signedPercent(a.length_mm, r.truth.length_mm, 3) : QString()});
-  rows.push_back({tr("Period [s]"), number(a.period_s, 6), number(a.period_sigma_s, 6),
+  const bool maxima = r.options.period_method == PeriodMethod::Maxima;
+  rows.push_back({maxima ? tr("Period, mid-swing crossings [s]") : tr("Period, mid-swing crossings [s] (g's)"),
+                  number(a.period.period_s, 6), number(a.period.period_sigma_s, 6),
                   t ? number(r.truth.period_s, 6) : QString(),
-                  t ? signedPercent(a.period_s, r.truth.period_s, 4) : QString()});
+                  t ? signedPercent(a.period.period_s, r.truth.period_s, 4) : QString()});
+  if (ok(a.maxima_status))
+    rows.push_back({maxima ? tr("Period, thesis's first to last maximum [s] (g's)")
+                           : tr("Period, thesis's first to last maximum [s]"),
+                    number(a.maxima.period_s, 6), number(a.maxima.period_sigma_s, 6),
+                    t ? number(r.truth.period_s, 6) : QString(),
+                    t ? signedPercent(a.maxima.period_s, r.truth.period_s, 4) : QString()});
+  else
+    rows.push_back({tr("Period, thesis's first to last maximum [s]"), QString::fromStdString(std::string(statusName(a.maxima_status))),
+                    QString(), QString(), QString()});
   rows.push_back({tr("g [m/s²]"), number(a.g_m_s2, 4), number(a.g_sigma_m_s2, 4),
                   t ? number(r.truth.g_m_s2, 5) : QString(), t ? signedPercent(a.g_m_s2, r.truth.g_m_s2, 3) : QString()});
   rows.push_back({tr("Swing amplitude [deg]"), number(a.amplitude_deg, 2), number(a.amplitude_sigma_deg, 2), QString(),
                   QString()});
-  if (r.amplitude_correction) {
+  if (r.options.amplitude_correction) {
     rows.push_back({tr("Small-swing period T0 [s]"), number(a.small_amplitude_period_s, 6),
                     number(a.small_amplitude_period_sigma_s, 6), QString(), QString()});
     rows.push_back({tr("g by eq. 5.1 with the measured period [m/s²]"), number(a.g_uncorrected_m_s2, 4), QString(),
@@ -90,7 +104,7 @@ void AnalysisWindow::showPendulum() {
   setMessage(tr("g = %1 ± %2 m/s² from %3 frames%4")
                  .arg(number(a.g_m_s2, 4), number(a.g_sigma_m_s2, 4))
                  .arg(a.frames)
-                 .arg(r.amplitude_correction ? tr(" (amplitude corrected)") : tr(" (eq. 5.1)")),
+                 .arg(r.options.amplitude_correction ? tr(" (amplitude corrected)") : tr(" (eq. 5.1)")),
              false);
 }
 

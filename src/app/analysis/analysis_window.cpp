@@ -110,7 +110,8 @@ QWidget* AnalysisWindow::buildControls() {
   input_live_ = new QRadioButton(tr("Live stream"));
   input_virtual_->setToolTip(tr("Render the virtual pendulum or two-target object with the current settings, as "
                                 "imagepro-cli does, with its exact ground truth"));
-  input_file_->setToolTip(tr("A CSV written by Data Out or imagepro-cli reconstruct --data-out"));
+  input_file_->setToolTip(tr("A CSV written by Data Out or imagepro-cli reconstruct --data-out; with a still "
+                             "recording also a video or images"));
   input_live_->setToolTip(tr("Collect the frames the main window's source produces"));
   auto* inputs = new QButtonGroup(this);
   for (QRadioButton* b : {input_virtual_, input_file_, input_live_}) inputs->addButton(b);
@@ -122,6 +123,16 @@ QWidget* AnalysisWindow::buildControls() {
   auto* file_row = new QHBoxLayout;
   file_row->addWidget(file_, 1);
   file_row->addWidget(browse_);
+  still_file_ = new QLineEdit;
+  still_file_->setObjectName(QStringLiteral("analysisStillFile"));
+  still_file_->setPlaceholderText(tr("still recording (optional)"));
+  still_file_->setToolTip(tr("Pendulum, as the thesis ran it: frames of the target held still at a few places on "
+                             "its arc (a pose CSV, a video or images). The length comes from these and the period "
+                             "from the file above, the swing. Empty: both from the swing"));
+  still_browse_ = new QPushButton(tr("Browse..."));
+  auto* still_row = new QHBoxLayout;
+  still_row->addWidget(still_file_, 1);
+  still_row->addWidget(still_browse_);
   note_ = new QLabel;
   note_->setObjectName(QStringLiteral("analysisNote"));
   note_->setWordWrap(true);
@@ -130,6 +141,7 @@ QWidget* AnalysisWindow::buildControls() {
   input_layout->addWidget(input_virtual_);
   input_layout->addWidget(input_file_);
   input_layout->addLayout(file_row);
+  input_layout->addLayout(still_row);
   input_layout->addWidget(input_live_);
   input_layout->addWidget(note_);
 
@@ -173,6 +185,12 @@ QWidget* AnalysisWindow::buildControls() {
                                                       tr("CSV files (*.csv *.txt);;All files (*)"));
     if (!path.isEmpty()) file_->setText(path);
   });
+  connect(still_browse_, &QPushButton::clicked, this, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Still recording"), still_file_->text(),
+                                                      tr("Recordings (*.csv *.avi *.mp4 *.mkv *.mov *.png *.pgm *.bmp "
+                                                         "*.jpg *.tif *.txt);;All files (*)"));
+    if (!path.isEmpty()) still_file_->setText(path);
+  });
   connect(run_, &QPushButton::clicked, this, [this] {
     if (isBusy()) cancel();
     else run();
@@ -199,12 +217,33 @@ QWidget* AnalysisWindow::buildPendulumParams() {
   rate_->setToolTip(tr("File or live input: the frame rate that times frames without timestamps (image files, a "
                        "CSV without timestamp_s)"));
   amplitude_correction_ = new QCheckBox(tr("Amplitude correction"));
-  amplitude_correction_->setChecked(defaults.amplitude_correction);
+  amplitude_correction_->setChecked(defaults.options.amplitude_correction);
   amplitude_correction_->setToolTip(tr("g from the small-swing period (exact pendulum); off: eq. 5.1 with the measured "
                                        "period, as in the thesis"));
+  period_method_ = new QComboBox;
+  period_method_->setObjectName(QStringLiteral("analysisPeriodMethod"));
+  period_method_->addItem(tr("Mid-swing crossings"), static_cast<int>(PeriodMethod::Crossings));
+  period_method_->addItem(tr("Thesis: first to last maximum"), static_cast<int>(PeriodMethod::Maxima));
+  period_method_->setToolTip(tr("The period g is computed from; the summary shows both. The thesis divided the time "
+                                "between the first and last maximum by the cycles, averaged over Tx, Ty and Tz"));
+  interlaced_ = new QCheckBox(tr("Interlaced frames"));
+  interlaced_->setObjectName(QStringLiteral("analysisInterlaced"));
+  interlaced_->setChecked(defaults.interlaced);
+  interlaced_->setToolTip(tr("Virtual scene: two fields a frame, the even rows half a frame time before the odd ones, "
+                             "as the thesis's camera (fig. 5.11)"));
+  still_positions_ = intSpin(0, 50, defaults.still_recording ? defaults.still.positions : 0);
+  still_positions_->setObjectName(QStringLiteral("analysisStillPositions"));
+  still_positions_->setSpecialValueText(tr("none: length from the swing"));
+  still_positions_->setToolTip(tr("Virtual scene: the length from a still recording first, the pendulum held at this "
+                                  "many angles over +-%1 deg, %2 frames each (thesis 5.3.2)")
+                                   .arg(defaults.still.span_deg)
+                                   .arg(defaults.still.frames_per_position));
   form->addRow(tr("Frames"), pendulum_frames_);
   form->addRow(tr("Noise"), pendulum_noise_);
+  form->addRow(tr("Still positions"), still_positions_);
+  form->addRow(interlaced_);
   form->addRow(tr("Rate for untimed frames"), rate_);
+  form->addRow(tr("Period for g"), period_method_);
   form->addRow(amplitude_correction_);
   return page;
 }
@@ -254,10 +293,15 @@ AnalysisInput AnalysisWindow::input() const {
 
 void AnalysisWindow::setFilePath(const QString& path) { file_->setText(path); }
 
+void AnalysisWindow::setStillPath(const QString& path) { still_file_->setText(path); }
+
 void AnalysisWindow::setPendulumParams(const VirtualPendulumParams& p) {
   pendulum_frames_->setValue(p.frames);
   pendulum_noise_->setValue(p.noise_sigma);
-  amplitude_correction_->setChecked(p.amplitude_correction);
+  amplitude_correction_->setChecked(p.options.amplitude_correction);
+  period_method_->setCurrentIndex(period_method_->findData(static_cast<int>(p.options.period_method)));
+  interlaced_->setChecked(p.interlaced);
+  still_positions_->setValue(p.still_recording ? p.still.positions : 0);
 }
 
 void AnalysisWindow::setTwoTargetParams(const VirtualTwoTargetParams& p) {
@@ -273,8 +317,18 @@ VirtualPendulumParams AnalysisWindow::pendulumParams() const {
   VirtualPendulumParams p;
   p.frames = pendulum_frames_->value();
   p.noise_sigma = pendulum_noise_->value();
-  p.amplitude_correction = amplitude_correction_->isChecked();
+  p.options = pendulumOptions();
+  p.interlaced = interlaced_->isChecked();
+  p.still_recording = still_positions_->value() > 0;
+  if (p.still_recording) p.still.positions = still_positions_->value();
   return p;
+}
+
+PendulumAnalysisOptions AnalysisWindow::pendulumOptions() const {
+  PendulumAnalysisOptions o;
+  o.amplitude_correction = amplitude_correction_->isChecked();
+  o.period_method = static_cast<PeriodMethod>(period_method_->currentData().toInt());
+  return o;
 }
 
 VirtualTwoTargetParams AnalysisWindow::twoTargetParams() const {
@@ -296,6 +350,9 @@ void AnalysisWindow::updateControls() {
   for (QRadioButton* b : {input_virtual_, input_file_, input_live_}) b->setEnabled(idle);
   file_->setEnabled(idle && in == AnalysisInput::DataOutFile);
   browse_->setEnabled(idle && in == AnalysisInput::DataOutFile);
+  const bool still = idle && in == AnalysisInput::DataOutFile && s == AnalysisStudy::Pendulum;
+  still_file_->setEnabled(still);
+  still_browse_->setEnabled(still);
   params_->setCurrentIndex(s == AnalysisStudy::Pendulum ? 0 : 1);
   params_->setEnabled(idle);
   plots_->setCurrentIndex(s == AnalysisStudy::Pendulum ? 0 : 1);
@@ -421,12 +478,19 @@ void AnalysisWindow::run() {
         return;
       }
       const double rate = rate_->value();
-      const bool correction = amplitude_correction_->isChecked();
-      startTask([out, path, rate, correction] { *out = runPendulumFile(path, rate, correction); },
-                [out, this] {
-                  pendulum_ = std::move(*out);
-                  showPendulum();
-                });
+      const PendulumAnalysisOptions options = pendulumOptions();
+      const std::string still = still_file_->text().trimmed().toStdString();
+      auto work = still.empty() ? std::function<void()>([out, path, rate, options] {
+        *out = runPendulumFile(path, rate, options);
+      })
+                                : std::function<void()>([out, still, path, settings, rate, options, this] {
+                                    *out = runPendulumStillSwing(still, path, settings, rate, options,
+                                                                 progress_.callbacks());
+                                  });
+      startTask(std::move(work), [out, this] {
+        pendulum_ = std::move(*out);
+        showPendulum();
+      });
     }
     return;
   }

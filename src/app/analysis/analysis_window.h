@@ -52,6 +52,9 @@ class AnalysisWindow : public QWidget {
   void setInput(AnalysisInput input);
   AnalysisInput input() const;
   void setFilePath(const QString& path);
+  // The pendulum's still recording (a pose CSV, a video or images): when given, the
+  // length comes from it and the file is the swing (thesis 5.3.2).
+  void setStillPath(const QString& path);
   void setPendulumParams(const VirtualPendulumParams& params);
   void setTwoTargetParams(const VirtualTwoTargetParams& params);
 
@@ -91,6 +94,7 @@ class AnalysisWindow : public QWidget {
   void showTwoTargets();
   void setMessage(const QString& text, bool error);
   VirtualPendulumParams pendulumParams() const;
+  PendulumAnalysisOptions pendulumOptions() const;
   VirtualTwoTargetParams twoTargetParams() const;
 
   MainWindow& main_;
@@ -101,12 +105,17 @@ class AnalysisWindow : public QWidget {
   QRadioButton* input_live_ = nullptr;
   QLineEdit* file_ = nullptr;
   QPushButton* browse_ = nullptr;
+  QLineEdit* still_file_ = nullptr;
+  QPushButton* still_browse_ = nullptr;
   QLabel* note_ = nullptr;
   QStackedWidget* params_ = nullptr;
   QSpinBox* pendulum_frames_ = nullptr;
   QDoubleSpinBox* pendulum_noise_ = nullptr;
   QDoubleSpinBox* rate_ = nullptr;
   QCheckBox* amplitude_correction_ = nullptr;
+  QComboBox* period_method_ = nullptr;
+  QCheckBox* interlaced_ = nullptr;
+  QSpinBox* still_positions_ = nullptr;
   QDoubleSpinBox* spacing_ = nullptr;
   QDoubleSpinBox* angle_ = nullptr;
   QSpinBox* two_frames_ = nullptr;

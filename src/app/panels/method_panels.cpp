@@ -106,6 +106,11 @@ QWidget* ellipsePanel(SettingsBinder& binder) {
                          "bennettMinPeakFraction",
                          QObject::tr("Least share of the path's point pairs that must vote for the accumulator's peak "
                                      "(thesis 2.6.1, rule 3; 1/16 measured on the synthetic library)"));
+  auto* max_fit_error = named(
+      binder.doubleSpin([e](Settings& s) -> auto& { return e(s).bennett_max_relative_error; }, 4),
+      "bennettMaxRelativeError",
+      QObject::tr("Largest E_rel of the direct fit that gives an accepted path's ellipse (beyond the thesis's rules: a "
+                  "point-symmetric bar passes rules 1-3, as in sample06_no_target.png; 1e9: the thesis's rules alone)"));
   auto* max_points = named(binder.intSpin([e](Settings& s) -> auto& { return e(s).bennett_max_points; }, QStringLiteral(" px")),
                            "bennettMaxPoints",
                            QObject::tr("Longer paths vote with a random sample of this many pixels, all pairs of them "
@@ -156,6 +161,7 @@ QWidget* ellipsePanel(SettingsBinder& binder) {
   form->addRow(QObject::tr("Quality min"), min_quality);
   form->addRow(QObject::tr("Quality max"), max_quality);
   form->addRow(QObject::tr("Peak share"), min_peak);
+  form->addRow(QObject::tr("Max fit E_rel"), max_fit_error);
   form->addRow(QObject::tr("Max points"), max_points);
   form->addRow(QObject::tr("Spot tolerance"), spot_tolerance);
   form->addRow(named(binder.check(QObject::tr("Require the target's spots"), [e](Settings& s) -> auto& { return e(s).require_target_spots; }),
@@ -165,7 +171,8 @@ QWidget* ellipsePanel(SettingsBinder& binder) {
   form->addRow(named(binder.check(QObject::tr("Report all targets"), [e](Settings& s) -> auto& { return e(s).report_all_targets; }),
                      "ellipseReportAll", QObject::tr("Two targets or more: report every one found instead of failing with AmbiguousTarget")));
   const std::vector<QWidget*> fit_only{accept, min_traced, min_arc, robust};
-  const std::vector<QWidget*> bennett_only{min_score, max_score, min_quality, max_quality, min_peak, max_points};
+  const std::vector<QWidget*> bennett_only{min_score, max_score, min_quality, max_quality, min_peak, max_fit_error,
+                                           max_points};
   binder.onAnyUpdate([&binder, fit_only, bennett_only, max_rel, max_sampson, robust_iterations, robust_traced] {
     const EllipseOptions& o = binder.model().pipeline.ellipse;
     const bool fit = o.method == EllipseMethod::DirectFit;

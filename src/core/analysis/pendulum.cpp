@@ -283,6 +283,63 @@ Status estimatePeriod(std::span<const double> times_s, std::span<const Eigen::Ve
   return Status::Ok;
 }
 
+Status estimatePeriodByMaxima(std::span<const double> times_s, std::span<const Eigen::Vector3d> positions_mm,
+                              double swing_period_s, MaximaPeriod& out) {
+  out = MaximaPeriod{};
+  const std::size_t n = times_s.size();
+  if (positions_mm.size() != n || !(swing_period_s > 0.0)) return Status::DegenerateFit;
+  if (n < static_cast<std::size_t>(kPendulumMinFrames)) return Status::TooFewFrames;
+  for (std::size_t i = 1; i < n; ++i)
+    if (!(times_s[i] > times_s[i - 1])) return Status::DegenerateFit;
+  std::vector<double> t(n), s(n);
+  for (std::size_t i = 0; i < n; ++i) t[i] = times_s[i] - times_s[0];
+  const double dt = t.back() / static_cast<double>(n - 1);  // mean frame time
+  const double omega = 2.0 * M_PI / swing_period_s;
+  double sum = 0.0, sum_sq = 0.0, frame_share = 0.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    double mean = 0.0;
+    for (std::size_t i = 0; i < n; ++i) mean += positions_mm[i][axis];
+    mean /= static_cast<double>(n);
+    double tss = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      s[i] = positions_mm[i][axis] - mean;
+      tss += s[i] * s[i];
+    }
+    const SineFit sine = fitSine(t, s, omega);
+    if (!sine.ok || !(tss > 0.0) || 1.0 - sine.rss / tss < 0.5) continue;
+    const double level = sine.c, band = sine.amplitude() / 3.0;
+    // A maximum: a frame above the band that is the highest within a quarter period
+    // either side (so one a cycle), with frames on both sides of it (the record's first
+    // and last two frames are not).
+    std::vector<double> maxima;
+    const double quarter = 0.25 * swing_period_s;
+    std::size_t from = 0, to = 0;  // the window [from, to) about frame i
+    for (std::size_t i = 2; i + 2 < n; ++i) {
+      while (t[from] < t[i] - quarter) ++from;
+      while (to < n && t[to] <= t[i] + quarter) ++to;
+      if (!(s[i] > level + band)) continue;
+      bool highest = true;
+      for (std::size_t j = from; j < to && highest; ++j) highest = s[j] < s[i] || (s[j] == s[i] && j >= i);
+      if (highest) maxima.push_back(t[i]);
+    }
+    if (maxima.size() < 2) continue;
+    const int cycles = static_cast<int>(maxima.size()) - 1;
+    const double period = (maxima.back() - maxima.front()) / cycles;
+    out.axis_period_s[axis] = period;
+    out.axis_cycles[axis] = cycles;
+    ++out.axes;
+    sum += period;
+    sum_sq += period * period;
+    frame_share = std::max(frame_share, dt / (std::sqrt(6.0) * cycles));
+  }
+  if (out.axes == 0) return Status::NoSwing;
+  out.period_s = sum / out.axes;
+  const double spread =
+      out.axes > 1 ? std::sqrt(std::max(0.0, (sum_sq - out.axes * out.period_s * out.period_s) / (out.axes - 1))) : 0.0;
+  out.period_sigma_s = std::max(spread / std::sqrt(static_cast<double>(out.axes)), frame_share);
+  return Status::Ok;
+}
+
 Status fitConstrainedSphere(std::span<const Eigen::Vector3d> positions_mm, std::span<const Eigen::Vector3d> normals,
                             SphereFit& out) {
   out = SphereFit{};
@@ -384,29 +441,53 @@ Status fitConstrainedSphere(std::span<const Eigen::Vector3d> positions_mm, std::
   return Status::Ok;
 }
 
-Status analyzePendulum(std::span<const PoseSample> samples, const PendulumAnalysisOptions& options,
-                       PendulumAnalysis& out) {
-  out = PendulumAnalysis{};
-  out.frames = static_cast<int>(samples.size());
+namespace {
+
+// The frames with a pose of one recording.
+struct Track {
   std::vector<double> t;
   std::vector<Eigen::Vector3d> positions, normals;
+};
+
+Track collect(std::span<const PoseSample> samples) {
+  Track track;
   for (const PoseSample& s : samples) {
     if (!s.valid) continue;
-    t.push_back(s.t_s);
-    positions.push_back(translation(s.pose));
-    normals.push_back(rotationMatrix(s.pose).col(2));
+    track.t.push_back(s.t_s);
+    track.positions.push_back(translation(s.pose));
+    track.normals.push_back(rotationMatrix(s.pose).col(2));
   }
-  out.valid_frames = static_cast<int>(t.size());
+  return track;
+}
+
+// The swing's frame counts and both periods; the period of `options` becomes the
+// measured one.
+Status measureSwing(std::span<const PoseSample> samples, const Track& swing, const PendulumAnalysisOptions& options,
+                    PendulumAnalysis& out) {
+  out.frames = static_cast<int>(samples.size());
+  out.valid_frames = static_cast<int>(swing.t.size());
   if (out.frames < kPendulumMinFrames) return Status::TooFewFrames;
   if (2 * out.valid_frames <= out.frames) return Status::TargetLost;
   if (out.valid_frames < kPendulumMinFrames) return Status::TooFewFrames;
+  const Status s = estimatePeriod(swing.t, swing.positions, out.period);
+  if (!ok(s)) return s;
+  out.maxima_status = estimatePeriodByMaxima(swing.t, swing.positions, out.period.period_s, out.maxima);
+  if (options.period_method == PeriodMethod::Maxima) {
+    if (!ok(out.maxima_status)) return out.maxima_status;
+    out.period_s = out.maxima.period_s;
+    out.period_sigma_s = out.maxima.period_sigma_s;
+  } else {
+    out.period_s = out.period.period_s;
+    out.period_sigma_s = out.period.period_sigma_s;
+  }
+  return Status::Ok;
+}
 
-  Status s = estimatePeriod(t, positions, out.period);
-  if (!ok(s)) return s;
-  s = fitConstrainedSphere(positions, normals, out.sphere);
-  if (!ok(s)) return s;
-  out.period_s = out.period.period_s;
-  out.period_sigma_s = out.period.period_sigma_s;
+// With the period and the sphere known: the swing angle about the pivot, its
+// amplitude, the small-amplitude period and g.
+Status finishAnalysis(const Track& swing, const PendulumAnalysisOptions& options, PendulumAnalysis& out) {
+  const std::vector<double>& t = swing.t;
+  const std::vector<Eigen::Vector3d>& positions = swing.positions;
   out.length_mm = out.sphere.radius_mm;
   out.length_sigma_mm = out.sphere.radius_sigma_mm;
 
@@ -453,6 +534,37 @@ Status analyzePendulum(std::span<const PoseSample> samples, const PendulumAnalys
                                                          out.small_amplitude_period_s, 2));
   if (!std::isfinite(out.g_m_s2) || !std::isfinite(out.g_sigma_m_s2)) return Status::DegenerateFit;
   return Status::Ok;
+}
+
+}  // namespace
+
+Status analyzePendulum(std::span<const PoseSample> samples, const PendulumAnalysisOptions& options,
+                       PendulumAnalysis& out) {
+  out = PendulumAnalysis{};
+  const Track swing = collect(samples);
+  Status s = measureSwing(samples, swing, options, out);
+  if (!ok(s)) return s;
+  s = fitConstrainedSphere(swing.positions, swing.normals, out.sphere);
+  if (!ok(s)) return s;
+  return finishAnalysis(swing, options, out);
+}
+
+Status analyzePendulumStillSwing(std::span<const PoseSample> still, std::span<const PoseSample> swing,
+                                 const PendulumAnalysisOptions& options, PendulumAnalysis& out) {
+  out = PendulumAnalysis{};
+  const Track swing_track = collect(swing);
+  Status s = measureSwing(swing, swing_track, options, out);
+  if (!ok(s)) return s;
+  const Track still_track = collect(still);
+  out.length_from_still = true;
+  out.still_frames = static_cast<int>(still.size());
+  out.still_valid_frames = static_cast<int>(still_track.t.size());
+  s = fitConstrainedSphere(still_track.positions, still_track.normals, out.sphere);
+  if (!ok(s)) {
+    out.still_failed = true;
+    return s;
+  }
+  return finishAnalysis(swing_track, options, out);
 }
 
 }  // namespace imagepro

@@ -2,6 +2,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "core/source/virtual_motion.h"
@@ -17,8 +18,11 @@ VirtualSceneOptions pendulumScene(const Settings& settings) {
 }
 }  // namespace
 
-void renderPendulumFrame(const Settings& settings, double t_s, const MotionBlur& blur, std::uint64_t frame_seed,
-                         cv::Mat& out, PendulumRenderWorkspace& ws) {
+namespace {
+
+// One field, or the whole frame: the exposure about t_s.
+void renderExposure(const Settings& settings, double t_s, const MotionBlur& blur, std::uint64_t frame_seed,
+                    cv::Mat& out, PendulumRenderWorkspace& ws) {
   VirtualSceneOptions scene = pendulumScene(settings);
   if (!(blur.exposure_s > 0.0) || blur.subframes <= 1) {
     renderTarget(settings.camera, settings.target, scene, virtualPoseAt(scene, t_s), out, frame_seed);
@@ -47,14 +51,30 @@ void renderPendulumFrame(const Settings& settings, double t_s, const MotionBlur&
   ws.sum.convertTo(out, CV_8U);
 }
 
-PendulumSource::PendulumSource(const Settings& settings, const MotionBlur& blur)
-    : settings_(settings), blur_(blur) {}
+}  // namespace
+
+void renderPendulumFrame(const Settings& settings, double t_s, const MotionBlur& blur, bool interlaced,
+                         std::uint64_t frame_seed, cv::Mat& out, PendulumRenderWorkspace& ws) {
+  const double rate = settings.virtual_scene.frame_rate_hz;
+  if (!interlaced || !(rate > 0.0)) {
+    renderExposure(settings, t_s, blur, frame_seed, out, ws);
+    return;
+  }
+  const double half_field = 0.25 / rate;
+  renderExposure(settings, t_s - half_field, blur, frame_seed, out, ws);
+  renderExposure(settings, t_s + half_field, blur, frame_seed, ws.field, ws);
+  for (int y = 1; y < out.rows; y += 2) ws.field.row(y).copyTo(out.row(y));
+}
+
+PendulumSource::PendulumSource(const Settings& settings, const MotionBlur& blur, bool interlaced)
+    : settings_(settings), blur_(blur), interlaced_(interlaced) {}
 
 double PendulumSource::frameRateHz() const { return settings_.virtual_scene.frame_rate_hz; }
 
 std::string PendulumSource::describe() const {
   char buf[96];
-  std::snprintf(buf, sizeof buf, "virtual pendulum %.0f Hz%s", frameRateHz(), blur_.exposure_s > 0.0 ? ", motion blur" : "");
+  std::snprintf(buf, sizeof buf, "virtual pendulum %.0f Hz%s%s", frameRateHz(),
+                blur_.exposure_s > 0.0 ? ", motion blur" : "", interlaced_ ? ", interlaced" : "");
   return buf;
 }
 
@@ -66,7 +86,41 @@ Status PendulumSource::next(Frame& out) {
   out.name.clear();
   const VirtualSceneOptions scene = pendulumScene(settings_);
   out.truth = virtualPoseAt(scene, out.timestamp_s);
-  renderPendulumFrame(settings_, out.timestamp_s, blur_, static_cast<std::uint64_t>(index_), out.image, ws_);
+  renderPendulumFrame(settings_, out.timestamp_s, blur_, interlaced_, static_cast<std::uint64_t>(index_), out.image,
+                      ws_);
+  ++index_;
+  return Status::Ok;
+}
+
+PendulumStillSource::PendulumStillSource(const Settings& settings, const PendulumStillParams& params)
+    : settings_(settings), params_(params) {}
+
+double PendulumStillSource::frameRateHz() const { return settings_.virtual_scene.frame_rate_hz; }
+
+std::string PendulumStillSource::describe() const {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "virtual pendulum held still at %d angles over +-%.0f deg", params_.positions,
+                params_.span_deg);
+  return buf;
+}
+
+double PendulumStillSource::angleDeg(std::int64_t index) const {
+  const std::int64_t position = index / std::max(1, params_.frames_per_position);
+  if (params_.positions <= 1) return 0.0;
+  return params_.span_deg * (2.0 * static_cast<double>(position) / (params_.positions - 1) - 1.0);
+}
+
+Status PendulumStillSource::next(Frame& out) {
+  const double rate = settings_.virtual_scene.frame_rate_hz;
+  if (!(rate > 0.0)) return Status::InvalidSettings;
+  if (index_ >= static_cast<std::int64_t>(std::max(0, params_.positions)) * std::max(1, params_.frames_per_position))
+    return Status::EndOfStream;
+  out.index = index_;
+  out.timestamp_s = static_cast<double>(index_) / rate;
+  out.name.clear();
+  const VirtualSceneOptions scene = pendulumScene(settings_);
+  out.truth = pendulumPoseAtAngle(scene, angleDeg(index_));
+  renderTarget(settings_.camera, settings_.target, scene, *out.truth, out.image, static_cast<std::uint64_t>(index_));
   ++index_;
   return Status::Ok;
 }

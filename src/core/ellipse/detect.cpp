@@ -90,7 +90,8 @@ void fitPath(const EllipseOptions& o, const Paths& paths, std::size_t i, cv::Siz
   if (!ok(s.fit_status)) return;  // no ellipse parameters for this path
   if (o.method == EllipseMethod::Bennett) {
     if (!ok(bennettAccumulate(path, o.bennett_max_points, ws.bennett, s.bennett, o.bennett_min_peak_fraction))) return;
-    s.accepted = bennettAccepts(o, s.bennett);
+    // The ellipse reported is the direct fit's: it must describe the path.
+    s.accepted = bennettAccepts(o, s.bennett) && s.fit.relative_error <= o.bennett_max_relative_error;
     if (s.accepted) traceEllipse(s.fit, path, o.trace_inlier_px, image, s.trace);
     return;
   }

@@ -37,7 +37,8 @@ constexpr EnumEntry<ConnectivityMethod> kConnectivity[] = {
 constexpr EnumEntry<EllipseMethod> kEllipse[] = {
     {EllipseMethod::Bennett, "bennett", "Bennett",
      "one accumulator per connected path, accepted by its symmetry, quality, score and peak-share rules; the ellipse "
-     "itself from the direct fit of the path (thesis 2.6.1, eqs. 2.26-2.28)"},
+     "itself from the direct fit of the path, which must fit it (E_rel at most bennett_max_relative_error, so a "
+     "point-symmetric bar is no ellipse) (thesis 2.6.1, eqs. 2.26-2.28)"},
     {EllipseMethod::DirectFit, "direct-fit", "Direct fit",
      "Fitzgibbon's least-squares ellipse fit of each path, accepted by the accept rule (E_rel of eq. 2.42 or the "
      "Sampson distance) when the path also traces the ellipse (thesis 2.6.2)"}};

@@ -116,6 +116,11 @@ struct EllipseOptions {
   double bennett_min_quality = 0.0;
   double bennett_max_quality = 1e9;
   double bennett_min_peak_fraction = 0.0625;  // peak score / point pairs of the path
+  // Beyond the thesis: the direct fit of an accepted path, which gives its ellipse, must
+  // fit it with E_rel at most this. A point-symmetric shape that is no ellipse (a bar,
+  // 67 x 8 px in data/samples/sample06_no_target.png, E_rel 0.043) passes rules 1-3;
+  // library ellipses stay below 0.005 (docs/ellipse-detection.md). 1e9: rules 1-3 alone.
+  double bennett_max_relative_error = 0.02;
   int bennett_max_points = 256;               // longer paths are subsampled (0: never)
   // Target selection: spot positions may deviate by this fraction of the disk radius.
   double target_spot_tolerance = 0.2;

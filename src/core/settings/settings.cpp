@@ -135,6 +135,7 @@ void visitSettings(Visitor& v, Settings& s) {
       v.field("bennett_min_quality", e.bennett_min_quality, 0.0, kInf);
       v.field("bennett_max_quality", e.bennett_max_quality, 0.0, kInf);
       v.field("bennett_min_peak_fraction", e.bennett_min_peak_fraction, 0.0, 1.0);
+      v.field("bennett_max_relative_error", e.bennett_max_relative_error, 0.0, kInf);
       v.field("bennett_max_points", e.bennett_max_points, 0, 100000);
       v.field("target_spot_tolerance", e.target_spot_tolerance, 0.0, 1.0);
       v.field("target_max_tilt_deg", e.target_max_tilt_deg, 0.0, 90.0);

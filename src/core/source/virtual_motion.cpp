@@ -65,6 +65,19 @@ double pendulumAngleDeg(const PendulumOptions& pendulum, double t_s) {
   return std::copysign(1.0, pendulum.amplitude_deg) * theta / kRadPerDeg;
 }
 
+Pose pendulumPoseAtAngle(const VirtualSceneOptions& scene, double theta_deg) {
+  const PendulumOptions& p = scene.pendulum;
+  const double heading = p.swing_axis_deg * kRadPerDeg;
+  // Swing direction: camera X turned by the heading about Y; the rope turns about
+  // the horizontal axis perpendicular to it, taking "down" (+Y) towards it.
+  const Eigen::Vector3d swing_dir(std::cos(heading), 0.0, -std::sin(heading));
+  const Eigen::Vector3d turn_axis = Eigen::Vector3d::UnitY().cross(swing_dir);
+  const Eigen::Matrix3d swing = Eigen::AngleAxisd(theta_deg * kRadPerDeg, turn_axis).toRotationMatrix();
+  const Eigen::Vector3d pivot(p.pivot_mm[0], p.pivot_mm[1], p.pivot_mm[2]);
+  const Eigen::Vector3d centre = pivot + swing * Eigen::Vector3d(0.0, p.length_mm, 0.0);
+  return poseFromRt(swing * rotationMatrix(scene.initial_pose), centre);
+}
+
 Pose virtualPoseAt(const VirtualSceneOptions& scene, double t_s) {
   Pose pose = scene.initial_pose;
   const MotionOptions& m = scene.motion;
@@ -81,20 +94,9 @@ Pose virtualPoseAt(const VirtualSceneOptions& scene, double t_s) {
       axisValue(pose, m.axis) += m.amplitude * (1.0 - 4.0 * std::abs(x - std::floor(x) - 0.5));
       break;
     }
-    case MotionKind::Pendulum: {
-      const PendulumOptions& p = scene.pendulum;
-      const double heading = p.swing_axis_deg * kRadPerDeg;
-      // Swing direction: camera X turned by the heading about Y; the rope turns about
-      // the horizontal axis perpendicular to it, taking "down" (+Y) towards it.
-      const Eigen::Vector3d swing_dir(std::cos(heading), 0.0, -std::sin(heading));
-      const Eigen::Vector3d turn_axis = Eigen::Vector3d::UnitY().cross(swing_dir);
-      const double theta = pendulumAngleDeg(p, t_s) * kRadPerDeg;
-      const Eigen::Matrix3d swing = Eigen::AngleAxisd(theta, turn_axis).toRotationMatrix();
-      const Eigen::Vector3d pivot(p.pivot_mm[0], p.pivot_mm[1], p.pivot_mm[2]);
-      const Eigen::Vector3d centre = pivot + swing * Eigen::Vector3d(0.0, p.length_mm, 0.0);
-      pose = poseFromRt(swing * rotationMatrix(scene.initial_pose), centre);
+    case MotionKind::Pendulum:
+      pose = pendulumPoseAtAngle(scene, pendulumAngleDeg(scene.pendulum, t_s));
       break;
-    }
   }
   return pose;
 }

@@ -43,5 +43,7 @@ Pose withOffset(const Pose& pose, const Pose& offset);
 // Pendulum: exact period (s) and swing angle (deg) at time t_s.
 double pendulumPeriodS(const PendulumOptions& pendulum);
 double pendulumAngleDeg(const PendulumOptions& pendulum, double t_s);
+// The pendulum's pose held at swing angle theta_deg (the target at rest there).
+Pose pendulumPoseAtAngle(const VirtualSceneOptions& scene, double theta_deg);
 
 }  // namespace imagepro

@@ -6,6 +6,7 @@
 // computes.
 #include <QAction>
 #include <QChart>
+#include <QComboBox>
 #include <QFile>
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -208,6 +209,63 @@ void AnalysisWindowTest::dataOutFileGivesTheCliNumbers() {
   QCOMPARE(a.g_sigma_m_s2, expected[QStringLiteral("g_sigma_m_s2")].toDouble());
   QCOMPARE(a.g_uncorrected_m_s2, expected[QStringLiteral("g_uncorrected_m_s2")].toDouble());
   QVERIFY(w.summaryText().contains(QString::number(a.g_m_s2, 'f', 4)));
+}
+
+// As the thesis ran it: the length from a still recording, the period from the swing,
+// here by the thesis's first to last maximum; the window gives what the CLI prints.
+void AnalysisWindowTest::stillAndSwingFilesGiveTheCliNumbers() {
+  const QString dir = scratchDir(QStringLiteral("analysis-still-swing"));
+  const QString still = dir + QStringLiteral("/still.csv"), swing = dir + QStringLiteral("/swing.csv");
+  auto record = [](FrameSource& source, Settings s, const QString& path, int frames) {
+    Engine engine(s);
+    DataOut out;
+    std::string error;
+    if (!ok(out.open(path.toStdString(), ExistingFile::Fail, error))) return false;
+    FrameResult r;
+    for (int i = 0; i < frames && engine.step(source, r) != Status::EndOfStream; ++i)
+      if (!out.write(r, error)) return false;
+    return true;
+  };
+  Settings s;
+  s.virtual_scene.noise_sigma = 3.0;
+  PendulumSource swinging(s, MotionBlur{});
+  QVERIFY(record(swinging, s, swing, 150));
+  Settings whole = s;
+  whole.pipeline.tracking.mode = TrackingMode::Off;
+  PendulumStillSource held(whole, PendulumStillParams{});
+  QVERIFY(record(held, whole, still, 1000));
+
+  QProcess cli;
+  cli.start(QStringLiteral(IMAGEPRO_CLI), {QStringLiteral("pendulum"), QStringLiteral("--still"), still,
+                                           QStringLiteral("--swing"), swing, QStringLiteral("--period-method"),
+                                           QStringLiteral("maxima"), QStringLiteral("--format"), QStringLiteral("json")});
+  QVERIFY(cli.waitForFinished(60000));
+  QCOMPARE(cli.exitCode(), 0);
+  const QJsonObject expected = QJsonDocument::fromJson(cli.readAllStandardOutput()).object();
+  QVERIFY(expected[QStringLiteral("length_from_still")].toBool());
+
+  AnalysisWindow& w = *window_;
+  w.setStudy(AnalysisStudy::Pendulum);
+  w.setInput(AnalysisInput::DataOutFile);
+  w.setFilePath(swing);
+  w.setStillPath(still);
+  auto* method = w.findChild<QComboBox*>(QStringLiteral("analysisPeriodMethod"));
+  QVERIFY(method);
+  method->setCurrentIndex(method->findData(static_cast<int>(PeriodMethod::Maxima)));
+  QVERIFY(runAndWait(w));
+  const PendulumStudyResult& r = w.pendulumResult();
+  QCOMPARE(r.status, Status::Ok);
+  const PendulumAnalysis& a = r.analysis;
+  QVERIFY(a.length_from_still);
+  QCOMPARE(a.still_frames, expected[QStringLiteral("still_frames")].toInt());
+  QCOMPARE(a.length_mm, expected[QStringLiteral("length_mm")].toDouble());
+  QCOMPARE(a.period_s, a.maxima.period_s);
+  QCOMPARE(a.period_s, expected[QStringLiteral("maxima_period_s")].toDouble());
+  QCOMPARE(a.g_m_s2, expected[QStringLiteral("g_m_s2")].toDouble());
+  QVERIFY(std::abs(a.length_mm - 444.0) < 0.005 * 444.0);
+  QVERIFY(w.summaryText().contains(QStringLiteral("first to last maximum [s] (g's)")));
+  QVERIFY(w.summaryText().contains(QStringLiteral("Still frames")));
+  w.setStillPath(QString());
 }
 
 void AnalysisWindowTest::brokenFilesGiveNamedErrors() {

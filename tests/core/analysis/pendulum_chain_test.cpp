@@ -78,15 +78,56 @@ TEST(PendulumScene, BlurAveragesTheInstantsOfTheExposure) {
   s.virtual_scene.noise_sigma = 0.0;
   PendulumRenderWorkspace ws;
   cv::Mat sharp, blurred, a, b;
-  renderPendulumFrame(s, 0.0, {}, 0, sharp, ws);
-  renderPendulumFrame(s, 0.0, MotionBlur{0.02, 2}, 0, blurred, ws);
-  renderPendulumFrame(s, -0.005, {}, 0, a, ws);
-  renderPendulumFrame(s, 0.005, {}, 0, b, ws);
+  renderPendulumFrame(s, 0.0, {}, false, 0, sharp, ws);
+  renderPendulumFrame(s, 0.0, MotionBlur{0.02, 2}, false, 0, blurred, ws);
+  renderPendulumFrame(s, -0.005, {}, false, 0, a, ws);
+  renderPendulumFrame(s, 0.005, {}, false, 0, b, ws);
   cv::Mat mean;
   cv::addWeighted(a, 0.5, b, 0.5, 0.0, mean, CV_32F);
   mean.convertTo(mean, CV_8U);
   EXPECT_LE(cv::norm(mean, blurred, cv::NORM_INF), 1.0);
   EXPECT_GT(cv::norm(sharp, blurred, cv::NORM_INF), 50.0);  // the target moves fast at t = 0
+}
+
+// Interlaced: the even rows a quarter frame time before the frame's time, the odd rows
+// a quarter after (fields half a frame time apart), each field blurred on its own.
+TEST(PendulumScene, InterlacedFramesTakeTheirFieldsAtTwoInstants) {
+  Settings s = noisyPendulum();
+  s.virtual_scene.noise_sigma = 0.0;
+  PendulumRenderWorkspace ws;
+  cv::Mat frame, early, late;
+  for (const MotionBlur& blur : {MotionBlur{}, MotionBlur{0.008, 4}}) {
+    renderPendulumFrame(s, 0.0, blur, true, 0, frame, ws);
+    renderPendulumFrame(s, -0.01, blur, false, 0, early, ws);
+    renderPendulumFrame(s, 0.01, blur, false, 0, late, ws);
+    ASSERT_EQ(frame.size(), early.size());
+    for (int y = 0; y < frame.rows; ++y)
+      ASSERT_EQ(cv::norm(frame.row(y), (y % 2 == 0 ? early : late).row(y), cv::NORM_INF), 0.0) << y;
+    EXPECT_GT(cv::norm(early, late, cv::NORM_INF), 50.0);  // the fields differ: the comb of fig. 5.11
+  }
+  PendulumSource interlaced(s, MotionBlur{}, true);
+  EXPECT_NE(interlaced.describe().find("interlaced"), std::string::npos);
+}
+
+// The still recording: the pendulum held at evenly spread angles, a few frames each.
+TEST(PendulumScene, StillSourceHoldsThePendulumAtItsAngles) {
+  const Settings s = noisyPendulum();
+  PendulumStillSource still(s, PendulumStillParams{3, 20.0, 2});
+  Frame f;
+  std::vector<double> x;
+  while (still.next(f) == Status::Ok) {
+    ASSERT_TRUE(f.truth.has_value());
+    x.push_back(f.truth->tx_mm);
+    EXPECT_DOUBLE_EQ(f.timestamp_s, f.index / 25.0);
+  }
+  ASSERT_EQ(x.size(), 6u);
+  EXPECT_DOUBLE_EQ(still.angleDeg(0), -20.0);
+  EXPECT_DOUBLE_EQ(still.angleDeg(3), 0.0);
+  EXPECT_DOUBLE_EQ(still.angleDeg(5), 20.0);
+  EXPECT_DOUBLE_EQ(x[0], x[1]);  // held still
+  EXPECT_NEAR(x[2], s.virtual_scene.pendulum.pivot_mm[0], 1e-9);
+  EXPECT_NEAR(x[5] - x[2], s.virtual_scene.pendulum.length_mm * std::sin(20.0 * M_PI / 180.0), 1e-9);
+  EXPECT_EQ(still.next(f), Status::EndOfStream);
 }
 
 }  // namespace

@@ -3,11 +3,14 @@
 // progress, and a source whose frames cannot be read.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <vector>
 
 #include "core/analysis/frame_limit.h"
 #include "core/analysis/pendulum_study.h"
+#include "core/pipeline/data_out.h"
 #include "core/source/virtual_motion.h"
+#include "support/test_dirs.h"
 
 namespace imagepro {
 namespace {
@@ -92,7 +95,7 @@ TEST(PendulumStudy, CancelStopsBeforeTheNextFrame) {
 
 TEST(PendulumStudy, UnreadableFramesAreNamedWithTheirReason) {
   ThenMissingFiles missing(nullptr, 3);
-  PendulumStudyResult r = runPendulumSource(missing, pendulumSettings(), 25.0, true, {});
+  PendulumStudyResult r = runPendulumSource(missing, pendulumSettings(), 25.0, {}, {});
   EXPECT_EQ(r.status, Status::FileNotFound);
   ASSERT_EQ(r.unreadable.size(), 3u);
   EXPECT_EQ(r.unreadable[0], "swing1.png: no such file");
@@ -102,7 +105,7 @@ TEST(PendulumStudy, UnreadableFramesAreNamedWithTheirReason) {
   PendulumSource pendulum(pendulumSettings(), MotionBlur{});
   FrameLimit four(pendulum, 4);
   ThenMissingFiles some(&four, 2);
-  r = runPendulumSource(some, pendulumSettings(), 25.0, true, {});
+  r = runPendulumSource(some, pendulumSettings(), 25.0, {}, {});
   EXPECT_EQ(r.status, Status::TooFewFrames);
   EXPECT_EQ(r.unreadable.size(), 2u);
   EXPECT_NE(r.error.find("(4 of 6 frames with a pose); 2 of them could not be read, the first: swing1.png: no such file"),
@@ -135,6 +138,128 @@ TEST(PendulumStudy, FrameLimitEndsAnEndlessSource) {
   EXPECT_EQ(limited.next(f), Status::EndOfStream);
   EXPECT_EQ(limited.next(f), Status::EndOfStream);
   EXPECT_EQ(limited.describe(), pendulum.describe());
+}
+
+// As the thesis ran it: the length from the pendulum held still at five places, the
+// period from a swing too small to fix the sphere.
+TEST(PendulumStudy, VirtualStillAndSwingRecordingsGiveKnownG) {
+  Settings s = pendulumSettings();
+  s.virtual_scene.pendulum.amplitude_deg = 4.0;
+  VirtualPendulumParams params;
+  params.still_recording = true;
+  params.still.positions = 5;
+  int done = 0, total = 0, sunk = 0;
+  const StudyCallbacks callbacks{[&](int d, int t) {
+                                   done = d;
+                                   total = t;
+                                 },
+                                 {}};
+  const PendulumStudyResult r = runVirtualPendulum(s, params, callbacks, [&](const FrameResult&) { ++sunk; });
+  ASSERT_EQ(r.status, Status::Ok) << r.error;
+  EXPECT_EQ(done, 275);
+  EXPECT_EQ(total, 275);
+  EXPECT_EQ(sunk, 250);  // data out is the swing's
+  ASSERT_TRUE(r.has_still);
+  EXPECT_EQ(r.still_samples.size(), 25u);
+  EXPECT_TRUE(r.analysis.length_from_still);
+  EXPECT_EQ(r.analysis.still_valid_frames, 25);
+  const PendulumOptions& truth = s.virtual_scene.pendulum;
+  EXPECT_NEAR(r.analysis.length_mm, truth.length_mm, 0.002 * truth.length_mm);
+  EXPECT_NEAR(r.analysis.g_m_s2, truth.gravity_m_s2, 0.005 * truth.gravity_m_s2);
+  // The swing alone cannot fix the length nearly as well.
+  params.still_recording = false;
+  const PendulumStudyResult alone = runVirtualPendulum(s, params, {});
+  ASSERT_EQ(alone.status, Status::Ok) << alone.error;
+  EXPECT_GT(alone.analysis.length_sigma_mm, 3.0 * r.analysis.length_sigma_mm);
+}
+
+// Interlaced frames (thesis fig. 5.11): a wide swing combs the target's outline past
+// recognition in most frames, as the thesis found; a small one is found in every frame
+// and gives the period, with the length from the pendulum held still.
+TEST(PendulumStudy, InterlacedFrames) {
+  Settings s = pendulumSettings();
+  VirtualPendulumParams params;
+  params.interlaced = true;
+  params.frames = 100;
+  PendulumStudyResult r = runVirtualPendulum(s, params, {});
+  EXPECT_EQ(r.status, Status::TargetLost) << r.error;
+  EXPECT_LT(r.analysis.valid_frames, 40);
+
+  s.virtual_scene.pendulum.amplitude_deg = 6.0;
+  params.frames = 250;
+  params.still_recording = true;
+  r = runVirtualPendulum(s, params, {});
+  ASSERT_EQ(r.status, Status::Ok) << r.error;
+  EXPECT_EQ(r.analysis.valid_frames, 250);
+  EXPECT_NEAR(r.analysis.period_s, r.truth.period_s, 1e-4 * r.truth.period_s);
+  EXPECT_NEAR(r.analysis.length_mm, r.truth.length_mm, 0.002 * r.truth.length_mm);
+  EXPECT_NEAR(r.analysis.g_m_s2, r.truth.g_m_s2, 0.005 * r.truth.g_m_s2);
+}
+
+void writePoses(const std::string& path, const std::vector<Pose>& poses, double rate_hz) {
+  std::filesystem::remove(path);
+  DataOut out;
+  std::string error;
+  ASSERT_EQ(out.open(path, ExistingFile::Fail, error), Status::Ok) << error;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    FrameResult r;
+    r.index = static_cast<std::int64_t>(i);
+    r.timestamp_s = static_cast<double>(i) / rate_hz;
+    r.status = Status::Ok;
+    r.pose = poses[i];
+    ASSERT_TRUE(out.write(r, error)) << error;
+  }
+  out.close();
+}
+
+TEST(PendulumStudy, StillAndSwingFromRecordedFiles) {
+  const std::filesystem::path dir = test::freshDir("pendulum_still_swing");
+  const Settings settings = pendulumSettings();
+  const VirtualSceneOptions& scene = settings.virtual_scene;
+  std::vector<Pose> still, swing;
+  for (double angle : {-25.0, -12.0, 0.0, 12.0, 25.0}) still.push_back(pendulumPoseAtAngle(scene, angle));
+  for (int i = 0; i < 200; ++i) swing.push_back(virtualPoseAt(scene, i / 25.0));
+  const std::string still_csv = (dir / "still.csv").string(), swing_csv = (dir / "swing.csv").string();
+  writePoses(still_csv, still, 25.0);
+  writePoses(swing_csv, swing, 25.0);
+  PendulumStudyResult r = runPendulumStillSwing(still_csv, swing_csv, settings, 25.0, {}, {});
+  ASSERT_EQ(r.status, Status::Ok) << r.error;
+  EXPECT_EQ(r.analysis.still_frames, 5);
+  EXPECT_NEAR(r.analysis.length_mm, scene.pendulum.length_mm, 0.01);
+  EXPECT_NEAR(r.analysis.g_m_s2, scene.pendulum.gravity_m_s2, 0.001);
+
+  // Each recording's problem is named as its own.
+  r = runPendulumStillSwing((dir / "none.csv").string(), swing_csv, settings, 25.0, {}, {});
+  EXPECT_EQ(r.status, Status::FileNotFound);
+  EXPECT_EQ(r.error.rfind("still: FileNotFound", 0), 0u) << r.error;
+  r = runPendulumStillSwing(still_csv, (dir / "none").string(), settings, 25.0, {}, {});
+  EXPECT_NE(r.status, Status::Ok);
+  EXPECT_EQ(r.error.rfind("swing: ", 0), 0u) << r.error;
+  writePoses(still_csv, {still[0], still[4]}, 25.0);
+  r = runPendulumStillSwing(still_csv, swing_csv, settings, 25.0, {}, {});
+  EXPECT_EQ(r.status, Status::TooFewFrames);
+  EXPECT_EQ(r.error.rfind("still: TooFewFrames", 0), 0u) << r.error;
+}
+
+TEST(PendulumStudy, RunsSummaryGivesMeanAndSpread) {
+  std::vector<PendulumAnalysis> runs(3);
+  const double g[3] = {9.785, 9.757, 9.788};
+  for (int i = 0; i < 3; ++i) {
+    runs[i].length_mm = 443.0 + i;
+    runs[i].period_s = 1.338;
+    runs[i].g_m_s2 = g[i];
+    runs[i].g_uncorrected_m_s2 = g[i] - 0.1;
+  }
+  const PendulumRunsSummary s = summarizePendulumRuns(runs);
+  EXPECT_EQ(s.runs, 3);
+  EXPECT_DOUBLE_EQ(s.length_mm, 444.0);
+  EXPECT_DOUBLE_EQ(s.length_sd_mm, 1.0);
+  EXPECT_DOUBLE_EQ(s.period_sd_s, 0.0);
+  EXPECT_NEAR(s.g_m_s2, (9.785 + 9.757 + 9.788) / 3, 1e-12);
+  EXPECT_NEAR(s.g_sd_m_s2, 0.017097, 1e-6);
+  EXPECT_NEAR(s.g_uncorrected_m_s2, s.g_m_s2 - 0.1, 1e-12);
+  EXPECT_EQ(summarizePendulumRuns({}).runs, 0);
+  EXPECT_DOUBLE_EQ(summarizePendulumRuns(std::span(runs).first(1)).g_sd_m_s2, 0.0);
 }
 
 }  // namespace

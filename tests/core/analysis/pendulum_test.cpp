@@ -276,5 +276,121 @@ TEST(Pendulum, DegenerateSequencesGiveNamedErrors) {
   EXPECT_EQ(analyzePendulum(exactSwing(still, 25.0, 200), {}, a), Status::NoSwing);
 }
 
+// The thesis's period: first to last maximum per axis, averaged over the axes that move
+// at the swing's period.
+TEST(MaximaPeriod, AxesAtTheSwingsPeriodOnly) {
+  // Swinging along camera X: Tx at the period, Ty (the height) at twice it, Tz still.
+  VirtualSceneOptions scene = pendulumScene(444.0, 15.0);
+  std::vector<double> t;
+  std::vector<Eigen::Vector3d> p, n;
+  split(exactSwing(scene, 25.0, 300), t, p, n);
+  const double truth = pendulumPeriodS(scene.pendulum);
+  MaximaPeriod m;
+  ASSERT_EQ(estimatePeriodByMaxima(t, p, truth, m), Status::Ok);
+  EXPECT_EQ(m.axes, 1);
+  EXPECT_GE(m.axis_cycles[0], 8);
+  EXPECT_EQ(m.axis_cycles[1], 0);
+  EXPECT_EQ(m.axis_cycles[2], 0);
+  // Each maximum is a frame: within a frame time over the cycles.
+  EXPECT_NEAR(m.period_s, truth, 0.04 / m.axis_cycles[0]);
+  EXPECT_GE(m.period_sigma_s, 0.04 / (std::sqrt(6.0) * m.axis_cycles[0]) - 1e-12);
+
+  // Turned 40 degrees towards the camera: Tz swings at the period too.
+  scene = pendulumScene(444.0, 15.0, 40.0);
+  t.clear(), p.clear(), n.clear();
+  split(exactSwing(scene, 25.0, 300), t, p, n);
+  ASSERT_EQ(estimatePeriodByMaxima(t, p, truth, m), Status::Ok);
+  EXPECT_EQ(m.axes, 2);
+  EXPECT_GE(m.axis_cycles[2], 7);
+  EXPECT_NEAR(m.period_s, truth, 0.04 / m.axis_cycles[0]);
+
+  // A top at the record's last frame is no maximum (the record may stop on the way up).
+  std::vector<double> t2;
+  std::vector<Eigen::Vector3d> p2;
+  for (int i = 0; i <= 125; ++i) {
+    t2.push_back(0.01 * i);
+    p2.emplace_back(std::sin(2 * M_PI * (0.01 * i) / 0.5 - M_PI / 2), 0.0, 0.0);  // 0.5 s, minima at 0, 0.5 ...
+  }
+  ASSERT_EQ(estimatePeriodByMaxima(t2, p2, 0.5, m), Status::Ok);
+  EXPECT_EQ(m.axis_cycles[0], 1);  // maxima at 0.25 and 0.75, not the last frame's 1.25
+  EXPECT_NEAR(m.period_s, 0.5, 1e-9);
+}
+
+TEST(MaximaPeriod, NamedErrors) {
+  std::vector<double> t(50);
+  std::vector<Eigen::Vector3d> p(50, Eigen::Vector3d(0, 0, 1000));
+  for (int i = 0; i < 50; ++i) t[i] = 0.04 * i;
+  MaximaPeriod m;
+  EXPECT_EQ(estimatePeriodByMaxima(t, p, 1.3, m), Status::NoSwing);  // nothing moves
+  EXPECT_EQ(estimatePeriodByMaxima(t, p, 0.0, m), Status::DegenerateFit);
+  EXPECT_EQ(estimatePeriodByMaxima(std::span(t).first(5), std::span(p).first(5), 1.3, m), Status::TooFewFrames);
+  p.pop_back();
+  EXPECT_EQ(estimatePeriodByMaxima(t, p, 1.3, m), Status::DegenerateFit);
+}
+
+TEST(Pendulum, PeriodMethodChoosesThePeriodOfG) {
+  const VirtualSceneOptions scene = pendulumScene(444.0, 15.0);
+  PendulumAnalysisOptions options;
+  options.period_method = PeriodMethod::Maxima;
+  PendulumAnalysis a;
+  ASSERT_EQ(analyzePendulum(exactSwing(scene, 25.0, 300), options, a), Status::Ok);
+  ASSERT_EQ(a.maxima_status, Status::Ok);
+  EXPECT_DOUBLE_EQ(a.period_s, a.maxima.period_s);
+  EXPECT_DOUBLE_EQ(a.period_sigma_s, a.maxima.period_sigma_s);
+  // Both estimates are kept; the crossings' is the sharper.
+  const double truth = pendulumPeriodS(scene.pendulum);
+  EXPECT_NEAR(a.period.period_s, truth, 2e-5);
+  EXPECT_NEAR(a.maxima.period_s, truth, 0.004);
+  EXPECT_NEAR(a.g_m_s2, scene.pendulum.gravity_m_s2 * std::pow(a.period.period_s / a.maxima.period_s, 2), 1e-3);
+}
+
+// The thesis's way: the length from frames of the pendulum held still at five places,
+// the period from a small swing that alone fixes no sphere.
+TEST(Pendulum, LengthFromStillFramesPeriodFromASwing) {
+  VirtualSceneOptions scene = pendulumScene(444.0, 3.0, 20.0);
+  std::vector<PoseSample> still;
+  for (double angle : {-20.0, -10.0, 0.0, 10.0, 20.0}) {
+    PoseSample s;
+    s.t_s = static_cast<double>(still.size());
+    s.valid = true;
+    s.pose = pendulumPoseAtAngle(scene, angle);
+    still.push_back(s);
+  }
+  const std::vector<PoseSample> swing = exactSwing(scene, 25.0, 300);
+  PendulumAnalysis a;
+  ASSERT_EQ(analyzePendulumStillSwing(still, swing, {}, a), Status::Ok);
+  EXPECT_TRUE(a.length_from_still);
+  EXPECT_EQ(a.still_frames, 5);
+  EXPECT_EQ(a.still_valid_frames, 5);
+  EXPECT_EQ(a.sphere.points, 5);
+  EXPECT_NEAR(a.length_mm, 444.0, 1e-6);
+  EXPECT_NEAR(a.period_s, pendulumPeriodS(scene.pendulum), 2e-5);
+  EXPECT_NEAR(a.amplitude_deg, 3.0, 0.05);  // the swing's, about the still frames' pivot
+  EXPECT_NEAR(a.g_m_s2, scene.pendulum.gravity_m_s2, 5e-4);
+}
+
+TEST(Pendulum, StillRecordingErrorsAreNamedAsItsOwn) {
+  const VirtualSceneOptions scene = pendulumScene(444.0, 15.0);
+  const std::vector<PoseSample> swing = exactSwing(scene, 25.0, 200);
+  std::vector<PoseSample> still;
+  for (double angle : {-20.0, 0.0, 20.0}) {
+    PoseSample s;
+    s.valid = true;
+    s.pose = pendulumPoseAtAngle(scene, angle);
+    still.push_back(s);
+  }
+  PendulumAnalysis a;
+  EXPECT_EQ(analyzePendulumStillSwing(still, swing, {}, a), Status::TooFewFrames);  // three places
+  EXPECT_TRUE(a.still_failed);
+  EXPECT_EQ(a.still_valid_frames, 3);
+  // Five frames, all in one place: no sphere.
+  still.assign(5, still[1]);
+  EXPECT_EQ(analyzePendulumStillSwing(still, swing, {}, a), Status::DegenerateFit);
+  EXPECT_TRUE(a.still_failed);
+  // A swing that fails is the swing's failure.
+  EXPECT_EQ(analyzePendulumStillSwing(still, std::span(swing).first(5), {}, a), Status::TooFewFrames);
+  EXPECT_FALSE(a.still_failed);
+}
+
 }  // namespace
 }  // namespace imagepro
