@@ -81,6 +81,7 @@ class OutputTest : public QObject {
   void dataOutWritesEveryFrame();
   void dataOutNeverOverwritesSilently();
   void plotsRecordAndExport();
+  void plotsRecordingIsBounded();
  private:
   std::unique_ptr<MainWindow> window_;
 };
