@@ -94,6 +94,10 @@ case "$mode" in
     ;;
 esac
 sanitize_tests="${SANITIZE_TESTS:-all}"
+# The sanitizer builds keep line numbers for their reports (-g1), for which ccache also
+# keys each object on its build folder by default; leaving the folder out lets a fresh
+# clone (CI) reuse what was compiled anywhere under ccache's base_dir.
+case "$mode" in sanitize|tsan|fuzz) export CCACHE_NOHASHDIR=1 ;; esac
 if [ "$mode" = sanitize ] && [ "$sanitize_tests" = core-cli ]; then
   mode_options+=(-DIMAGEPRO_BUILD_APP=OFF)
 fi
