@@ -39,8 +39,11 @@ for t in "${targets[@]}"; do
     "$program" "$work" "$root/tests/fuzz/corpus/$t" -max_total_time="$seconds" "${runs_limit[@]}" -max_len=65536 \
     -rss_limit_mb=2048 -timeout=30 -print_final_stats=1 -artifact_prefix="$crashes/" >"$log" 2>&1 || status=$?
   runs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
-  found="$(find "$crashes" -type f -newer "$crashes/.start" | wc -l)"
-  line="$t: ${runs:-?} inputs in $(($(date +%s) - started)) s, $found crashing"
+  # libFuzzer also keeps inputs over its 10 s slow-input mark (slow-unit-*): on a loaded
+  # machine those are not findings, so only crashes, leaks, time-outs and memory count.
+  found="$(find "$crashes" -type f -newer "$crashes/.start" \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)"
+  slow="$(find "$crashes" -type f -newer "$crashes/.start" -name 'slow-unit-*' | wc -l)"
+  line="$t: ${runs:-?} inputs in $(($(date +%s) - started)) s, $found crashing, $slow slow (kept)"
   if ((status != 0)) || ((found > 0)); then
     failed=1
     line+=" (exit $status; see $log)"
