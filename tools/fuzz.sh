@@ -6,11 +6,15 @@
 #
 #   tools/fuzz.sh [SECONDS] [TARGET...]     TARGET: image settings calibration pose_csv
 #
+# FUZZ_RUNS=N stops each target after N inputs if that comes first (the long runs of
+# docs/reliability.md: FUZZ_RUNS=1000000).
 # Prints one line per target (inputs run, seconds, crashes) and exits 1 if any crashed.
 # Replay a kept input with the same program: build-fuzz/tests/fuzz/fuzz_<target> FILE.
 set -euo pipefail
 
 seconds="${1:-60}"
+runs_limit=()
+[ -n "${FUZZ_RUNS:-}" ] && runs_limit=(-runs="$FUZZ_RUNS")
 shift || true
 targets=("$@")
 ((${#targets[@]})) || targets=(image settings calibration pose_csv)
@@ -30,13 +34,16 @@ for t in "${targets[@]}"; do
   echo "== fuzzing $t for $seconds s (log: $log)"
   # Inputs past 64 KiB only slow the run: the seeds are far smaller. A 2 GiB memory
   # cap and a 30 s limit per input turn a runaway allocation or a hang into a finding.
-  status=0
+  status=0 started=$(date +%s)
   ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
-    "$program" "$work" "$root/tests/fuzz/corpus/$t" -max_total_time="$seconds" -max_len=65536 \
+    "$program" "$work" "$root/tests/fuzz/corpus/$t" -max_total_time="$seconds" "${runs_limit[@]}" -max_len=65536 \
     -rss_limit_mb=2048 -timeout=30 -print_final_stats=1 -artifact_prefix="$crashes/" >"$log" 2>&1 || status=$?
   runs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
-  found="$(find "$crashes" -type f -newer "$crashes/.start" | wc -l)"
-  line="$t: ${runs:-?} inputs in $seconds s, $found crashing"
+  # libFuzzer also keeps inputs over its 10 s slow-input mark (slow-unit-*): on a loaded
+  # machine those are not findings, so only crashes, leaks, time-outs and memory count.
+  found="$(find "$crashes" -type f -newer "$crashes/.start" \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)"
+  slow="$(find "$crashes" -type f -newer "$crashes/.start" -name 'slow-unit-*' | wc -l)"
+  line="$t: ${runs:-?} inputs in $(($(date +%s) - started)) s, $found crashing, $slow slow (kept)"
   if ((status != 0)) || ((found > 0)); then
     failed=1
     line+=" (exit $status; see $log)"

@@ -83,6 +83,7 @@ class OutputTest : public QObject {
   void streamFromTheDataOutPanel();
   void streamProblemIsNamedInTheStatusBar();
   void plotsRecordAndExport();
+  void plotsRecordingIsBounded();
  private:
   std::unique_ptr<MainWindow> window_;
 };

@@ -22,7 +22,6 @@ namespace imagepro::app {
 
 namespace {
 
-constexpr std::size_t kMaxRecorded = 200000;  // about two hours at 25 Hz
 constexpr std::size_t kShown = 400;           // points on screen per series
 constexpr int kRedrawMs = 200;
 

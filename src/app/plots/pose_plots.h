@@ -23,6 +23,10 @@ class PosePlots : public QWidget {
  public:
   explicit PosePlots(QWidget* parent = nullptr);
 
+  // The recording's bound (about two hours at 25 Hz, 27 MB): past it the oldest tenth
+  // goes, so a long run's memory levels off there.
+  static constexpr std::size_t kMaxRecorded = 200000;
+
   void append(const std::vector<PoseSample>& samples);
   void clear();
   bool isPaused() const;

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <vector>
 
 #include "app/main_window/frame_view.h"
 #include "app/main_window/main_window.h"
@@ -231,6 +232,25 @@ void OutputTest::plotsRecordAndExport() {
   QVERIFY(lines.front().contains(QStringLiteral("truth_Tz_mm")));
   QVERIFY(!w.posePlots()->exportCsv(scratchDir(QStringLiteral("plots2")) + QStringLiteral("/no/dir/x.csv"), error));
   QVERIFY(!error.isEmpty());
+}
+
+// A long run's recording levels off at the bound: the oldest samples go, the newest stay
+// in order (the application's soak counts on it, docs/reliability.md).
+void OutputTest::plotsRecordingIsBounded() {
+  PosePlots plots;
+  std::vector<PoseSample> chunk(1000);
+  std::int64_t next = 0;
+  std::size_t largest = 0;
+  while (next < static_cast<std::int64_t>(PosePlots::kMaxRecorded) * 3 / 2) {
+    for (PoseSample& s : chunk) s.index = next++;
+    plots.append(chunk);
+    largest = std::max(largest, plots.recorded().size());
+  }
+  QCOMPARE(largest, PosePlots::kMaxRecorded);
+  const auto& recorded = plots.recorded();
+  QVERIFY(recorded.size() >= PosePlots::kMaxRecorded * 9 / 10);
+  QCOMPARE(recorded.back().index, next - 1);
+  for (std::size_t i = 1; i < recorded.size(); ++i) QCOMPARE(recorded[i].index, recorded[i - 1].index + 1);
 }
 
 }  // namespace imagepro::app::test
