@@ -368,7 +368,7 @@ void Worker::publish() {
   meters.hz = frame_period_s_ > 0.0 && running_.load() ? 1.0 / frame_period_s_ : 0.0;
   meters.cpu_percent = cpu_percent_;
   meters.source = source_ ? QString::fromStdString(source_->describe()) : QString();
-  buildPacket(engine_, result_, meters, *packet);
+  buildPacket(engine_, result_, meters, packet_ws_, *packet);
   if (stream_.isActive()) {
     packet->stream = QString::fromStdString(stream_.report());
     packet->stream_ok = ok(stream_.status());
