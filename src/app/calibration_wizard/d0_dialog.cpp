@@ -110,6 +110,7 @@ D0Dialog::D0Dialog(MainWindow& window) : QDialog(&window), window_(window) {
   table_->setObjectName(QStringLiteral("d0Table"));
   table_->setHorizontalHeaderLabels({tr("Frame"), tr("Origin"), tr("Status"), tr("Iterations"), tr("d0 (mm)"),
                                      tr("Depth (mm)"), tr("Known (mm)"), tr("Depth - known (mm)")});
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   table_->horizontalHeader()->setSectionResizeMode(kOrigin, QHeaderView::Stretch);
   table_->verticalHeader()->hide();
   summary_ = new QLabel;
@@ -141,7 +142,7 @@ D0Dialog::D0Dialog(MainWindow& window) : QDialog(&window), window_(window) {
   layout->addLayout(buttons);
   layout->addWidget(table_, 1);
   layout->addWidget(summary_);
-  layout->addWidget(chart_box, 1);
+  layout->addWidget(chart_box, 2);
 
   connect(capture, &QPushButton::clicked, this, &D0Dialog::captureFrame);
   connect(open, &QPushButton::clicked, this, [this] {

@@ -256,10 +256,15 @@ void Worker::onIdleUpdate() {
 
 void Worker::tick() {
   if (!running_.load() || !source_) return;
-  applyPending();
+  const bool changed = applyPending();
   if (!source_) return;  // a camera that could not be opened anew
   if (!processFrame(true)) {
     doStop();
+    // Options that came with the end of a file list apply to its last frame, still shown.
+    if (changed && kind_ == SourceKind::File && have_file_frame_) {
+      processFrame(false);
+      publish();
+    }
     return;
   }
   if (isFatalSourceError(result_.status)) {

@@ -105,8 +105,10 @@ void CalibrationCheckTest::overlayMatchesThePatternsTruth() {
     w.openPaths({patternFile(QStringLiteral("calibration_check_lens"), recommendedCalibrationViews(800.0)[0],
                              kThesisCameraDistortion)});
     box->click();
-    QTRY_VERIFY_WITH_TIMEOUT(shownCheck(w) && ok(shownCheck(w)->status) && shownCheck(w)->stats.matched > 100, 10000);
-    QTest::qWait(200);
+    QTRY_VERIFY2_WITH_TIMEOUT(shownCheck(w) && ok(shownCheck(w)->status) && shownCheck(w)->stats.matched > 100,
+                              qPrintable(w.frameView()->calibrationCheckText()), 10000);
+    w.resize(1500, 1000);  // the view near the frame's own size
+    QTest::qWait(300);
     QVERIFY(w.frameView()->grab().save(shot, "PNG", 0));
   }
 }
