@@ -189,6 +189,10 @@ gen_screenshots() {
     "$tests" intrinsicModeRecoversTheCamera
   screenshot docs/app-analysis.png env IMAGEPRO_ANALYSIS_SCREENSHOT=docs/app-analysis.png QT_QPA_PLATFORM=xcb \
     "${xvfb[@]}" "$tests" virtualPendulumGivesG
+  screenshot docs/app-calibration-check.png env IMAGEPRO_CALIBRATION_CHECK_SCREENSHOT=docs/app-calibration-check.png \
+    QT_QPA_PLATFORM=xcb "${xvfb[@]}" "$tests" overlayMatchesThePatternsTruth
+  screenshot docs/app-d0.png env IMAGEPRO_D0_SCREENSHOT=docs/app-d0.png QT_QPA_PLATFORM=xcb \
+    "${xvfb[@]}" "$tests" virtualFramesGiveTheirKnownD0
 }
 
 # The walk-through of the Python module, run by the Python it was built for, cell by cell.

@@ -1,13 +1,11 @@
 // imagepro-cli estimate-d0: the image plane distance d0 from frames of the target at an
 // unknown depth, by the thesis's iteration (eqs. 4.1-4.2) from the lens's focal length.
-#include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "cli/command.h"
 #include "cli/frame_input.h"
-#include "core/pipeline/engine.h"
-#include "core/reconstruction/image_plane_distance.h"
-#include "core/reconstruction/reconstruct.h"
+#include "core/calibration/d0_estimation.h"
 
 namespace imagepro::cli {
 namespace {
@@ -24,43 +22,22 @@ int run(const Args& args) {
   if (!(epsilon > 0.0)) throw UsageError("--epsilon must be positive");
   if (maxIterations < 1) throw UsageError("--max-iterations must be at least 1");
 
-  Settings settings = loadConfig(args);
+  const Settings settings = loadConfig(args);
   auto source = openFrameInput(args, settings);
-  // Detection only, every frame searched whole: d0 changes nothing before the reconstruction.
-  Settings detection = settings;
-  detection.pipeline.level = ApplicationLevel::Ellipse;
-  detection.pipeline.tracking.mode = TrackingMode::Off;
-  Engine engine(detection);
-  ReconstructionConfig config = reconstructionConfig(settings);
-  ReconstructionWorkspace ws;
-  ReconstructionResult reconstruction;
+  D0Estimator estimator(settings, D0Options{focal, epsilon, maxIterations});
 
   std::printf("frame,status,d0_mm,depth_mm,iterations\n");
-  double sum = 0.0, sum2 = 0.0;
-  int count = 0;
+  std::vector<double> estimates;
   std::string first_problem;  // why the first frame without an estimate had none
   FrameResult result;
-  for (;;) {
-    if (engine.step(*source, result) == Status::EndOfStream) break;
+  D0FrameEstimate frame_estimate;
+  while (estimator.step(*source, result, frame_estimate) != Status::EndOfStream) {
     const std::string frame = result.name.empty() ? std::to_string(result.index) : result.name;
-    Status status = result.status;
-    ImagePlaneDistanceEstimate est;
-    if (ok(status) && result.targets.empty()) status = Status::NoTarget;
-    if (ok(status)) {
-      const Ellipse rim = result.targets.front().ellipse;
-      auto depthAt = [&](double d0, double& depth) {
-        config.camera.image_plane_distance_mm = d0;
-        const Status s = reconstructTarget(config, engine.lastFrame().image, rim, result.threshold, ws, reconstruction);
-        depth = reconstruction.pose.tz_mm;
-        return s;
-      };
-      status = estimateImagePlaneDistance(focal, depthAt, epsilon, maxIterations, est);
-    }
+    const Status status = frame_estimate.status;
+    const ImagePlaneDistanceEstimate& est = frame_estimate.estimate;
     if (ok(status)) {
       std::printf("%s,ok,%.6f,%.3f,%d\n", frame.c_str(), est.d0_mm, est.depth_mm, est.iterations);
-      sum += est.d0_mm;
-      sum2 += est.d0_mm * est.d0_mm;
-      ++count;
+      estimates.push_back(est.d0_mm);
     } else {
       std::printf("%s,%s,,,\n", frame.c_str(), std::string(statusName(status)).c_str());
       // A frame the source could not deliver (a missing or corrupt file) is named with its reason.
@@ -73,10 +50,9 @@ int run(const Args& args) {
     }
     std::fflush(stdout);
   }
-  if (count > 0) {
-    const double mean = sum / count;
-    const double sd = count > 1 ? std::sqrt(std::max(0.0, (sum2 - count * mean * mean) / (count - 1))) : 0.0;
-    std::fprintf(stderr, "d0 = %.6f mm (mean of %d frames, standard deviation %.6f mm)\n", mean, count, sd);
+  if (const D0Summary summary = summarizeD0(estimates); summary.count > 0) {
+    std::fprintf(stderr, "d0 = %.6f mm (mean of %d frames, standard deviation %.6f mm)\n", summary.mean_mm,
+                 summary.count, summary.sd_mm);
     return 0;
   }
   // Without an estimate the command has failed, whatever the reason: say the first one.

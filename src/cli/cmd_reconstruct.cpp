@@ -7,6 +7,7 @@
 #include "cli/command.h"
 #include "cli/enum_options.h"
 #include "cli/frame_input.h"
+#include "cli/virtual_motion_options.h"
 #include "core/common/pose_csv.h"
 #include "core/pipeline/data_out.h"
 #include "core/pipeline/engine.h"
@@ -59,10 +60,15 @@ StreamOptions streamOptions(const Args& args, StreamOptions options) {
 int run(const Args& args) {
   std::vector<std::string> known = kFrameInputOptions;
   known.insert(known.end(), {"format", "data-out", "truth", "no-pace", "stream", "stream-format"});
+  known.insert(known.end(), kVirtualMotionOptions.begin(), kVirtualMotionOptions.end());
   args.rejectUnknown(known);
   const std::string format = args.valueOr("format", "csv");
   if (format != "csv" && format != "json") throw UsageError("--format must be csv or json");
-  const Settings settings = loadConfig(args);
+  Settings settings = loadConfig(args);
+  for (const std::string& key : kVirtualMotionOptions)
+    if (args.has(key) && !args.has("virtual")) throw UsageError("--" + key + " goes with --virtual");
+  applyVirtualMotionOptions(args, settings.virtual_scene);
+  checkOptionRanges(settings, kVirtualMotionOptionKeys);
   auto source = openFrameInput(args, settings);
   const bool with_truth = args.has("truth");
 
@@ -141,8 +147,8 @@ const CommandRegistration kRegistration{{
     std::string("usage: imagepro-cli reconstruct [--config FILE] [--format csv|json] [--truth]\n"
                 "                                [--data-out FILE] [--stream udp://HOST:PORT\n"
                 "                                [--stream-format json|opentrack]] INPUT\n\n") +
-        kFrameInputHelp +
-        "\n\nOne row per frame: frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm.\n"
+        kFrameInputHelp + "\n  with --virtual, the settings' motion may be changed:\n" + virtualMotionHelp() +
+        "\nOne row per frame: frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm.\n"
         "A frame without a target is a row with the error's name, not a failed command.\n"
         "A pose that cannot be trusted is not ok either: AmbiguousPose (the rim's two\n"
         "possible poses fit the spots about equally; with --format json both are given as\n"

@@ -3,14 +3,13 @@
 // docs/conventions.md, frame = PNG file name, so reconstruct's output compares row by row).
 #include <chrono>
 #include <cstdio>
-#include <sstream>
-
 
 #include "cli/command.h"
 #include "cli/enum_options.h"
 #include "cli/option_ranges.h"
 #include "cli/render_output.h"
 #include "cli/render_real.h"
+#include "cli/virtual_motion_options.h"
 #include "core/common/pose_csv.h"
 #include "core/settings/enum_names.h"
 #include "core/source/sources.h"
@@ -31,36 +30,10 @@ int level(const Args& args, const std::string& key, int fallback) {
   return v;
 }
 
-Pose poseOption(const Args& args, const Pose& fallback) {
-  const auto text = args.value("pose");
-  if (!text) return fallback;
-  double v[6];
-  std::istringstream in(*text);
-  std::string field;
-  int n = 0;
-  while (std::getline(in, field, ',')) {
-    if (n == 6) throw UsageError("--pose takes six numbers: RX,RY,RZ,TX,TY,TZ");
-    try {
-      size_t used = 0;
-      v[n] = std::stod(field, &used);
-      if (used != field.size()) throw std::invalid_argument(field);
-    } catch (const std::exception&) {
-      throw UsageError("--pose: \"" + field + "\" is not a number");
-    }
-    ++n;
-  }
-  if (n != 6) throw UsageError("--pose takes six numbers: RX,RY,RZ,TX,TY,TZ");
-  return Pose{v[0], v[1], v[2], v[3], v[4], v[5]};
-}
-
 // The settings' virtual scene with the command line's changes.
 void applyOptions(const Args& args, VirtualSceneOptions& s) {
   s.mode = enumOption(args, "mode", s.mode);
-  s.motion.kind = enumOption(args, "motion", s.motion.kind);
-  s.motion.axis = enumOption(args, "axis", s.motion.axis);
-  s.motion.amplitude = args.number("amplitude", s.motion.amplitude);
-  s.motion.period_s = args.number("period", s.motion.period_s);
-  if (!(s.motion.period_s > 0.0)) throw UsageError("--period must be more than 0");
+  applyVirtualMotionOptions(args, s);
   s.noise_sigma = nonNegative(args, "noise", s.noise_sigma);
   s.blur_sigma_px = nonNegative(args, "blur", s.blur_sigma_px);
   s.clutter = args.integer("clutter", s.clutter);
@@ -76,12 +49,11 @@ void applyOptions(const Args& args, VirtualSceneOptions& s) {
   s.seed = static_cast<unsigned>(seed);
   s.frame_rate_hz = args.number("rate", s.frame_rate_hz);
   if (!(s.frame_rate_hz > 0.0)) throw UsageError("--rate must be more than 0");
-  s.initial_pose = poseOption(args, s.initial_pose);
+  s.initial_pose = sixNumbersOption(args, "pose", s.initial_pose);
 }
 
 // The settings keys the options above set, for the settings file's range checks.
-const std::vector<OptionKey> kOptionKeys = {
-    {"virtual.motion.amplitude", "--amplitude"}, {"virtual.motion.period_s", "--period"},
+const std::vector<OptionKey> kSceneOptionKeys = {
     {"virtual.noise_sigma", "--noise"},          {"virtual.blur_sigma_px", "--blur"},
     {"virtual.clutter", "--clutter"},            {"virtual.illumination_gradient", "--gradient"},
     {"virtual.white_level", "--white"},          {"virtual.black_level", "--black"},
@@ -99,7 +71,9 @@ int renderVirtual(const Args& args, Settings settings) {
   if (name && (name->empty() || name->find('/') != std::string::npos))
     throw UsageError("--name must be a file name without a folder");
   applyOptions(args, settings.virtual_scene);
-  checkOptionRanges(settings, kOptionKeys);
+  std::vector<OptionKey> keys = kSceneOptionKeys;
+  keys.insert(keys.end(), kVirtualMotionOptionKeys.begin(), kVirtualMotionOptionKeys.end());
+  checkOptionRanges(settings, keys);
 
   RenderOutput out(*out_dir, args.has("append"), poseCsvHeader("in_view"));
   auto source = makeVirtualSource(settings, args.has("pattern") ? VirtualContent::Pattern : VirtualContent::Target);
@@ -131,9 +105,10 @@ int renderVirtual(const Args& args, Settings settings) {
 }
 
 int run(const Args& args) {
-  std::vector<std::string> known = {"out",   "frames", "mode",       "motion", "axis", "amplitude", "period",
-                                    "noise", "blur",   "clutter",    "gradient", "white", "black", "background",
-                                    "seed",  "rate",   "pose",       "pattern", "name", "append", "scene"};
+  std::vector<std::string> known = {"out",   "frames", "mode",  "noise", "blur",    "clutter", "gradient",
+                                    "white", "black",  "background", "seed", "rate", "pose", "pattern", "name",
+                                    "append", "scene"};
+  known.insert(known.end(), kVirtualMotionOptions.begin(), kVirtualMotionOptions.end());
   known.insert(known.end(), kRealSceneOptions.begin(), kRealSceneOptions.end());
   args.rejectUnknown(known);
   if (!args.positionals().empty()) throw UsageError("unexpected argument \"" + args.positionals()[0] + "\"");
@@ -160,10 +135,8 @@ const CommandRegistration kRegistration{{
     "settings' \"virtual\" section, within the ranges the settings file allows:\n"
     "  --mode M          how the frames are drawn:\n" +
     choicesHelp<RenderMode>() +
-    "  --motion K        how the target moves:\n" +
-    choicesHelp<MotionKind>() +
-    "  --axis A          the parameter the motion moves: " + enumChoices<PoseAxis>() + "\n"
-    "  --amplitude A     mm or degrees;  --period S  seconds;  --rate HZ  frames per second\n"
+    virtualMotionHelp() +
+    "  --rate HZ         frames per second\n"
     "  --pose RX,RY,RZ,TX,TY,TZ   the initial pose (degrees " + rangeText("virtual.pose.rx_deg") + ", mm, TZ > 0)\n" +
     "  --noise S         Gaussian noise sigma, " + rangeText("virtual.noise_sigma") + " grey levels (grey mode)\n" +
     "  --blur S          Gaussian blur sigma, " + rangeText("virtual.blur_sigma_px") + " pixels (grey mode)\n" +

@@ -49,6 +49,7 @@ class VirtualTest : public QObject {
   void keysInFieldsDoNotMoveTheTarget();
   void guiStaysResponsiveAtFullSpeed();
   void missingCameraShowsAnError();
+  void constantVelocityFromTheSettingsDialog();
  private:
   std::unique_ptr<MainWindow> window_;
 };
@@ -78,6 +79,7 @@ class OutputTest : public QObject {
   void cleanup();
   void screenshotWritesPng();
   void screenshotToBadPathShowsError();
+  void screenshotFreezesProcessingWhileSaving();
   void dataOutWritesEveryFrame();
   void dataOutNeverOverwritesSilently();
   void streamFromTheDataOutPanel();
@@ -119,6 +121,32 @@ class CalibrationWizardTest : public QObject {
   void intrinsicModeRecoversTheCamera();
   void intrinsicModeNamesBadInput();
   void intrinsicModeCapturesTheRunningSource();
+ private:
+  std::unique_ptr<MainWindow> window_;
+};
+
+// The live calibration check (thesis A.1.1): the pattern's ideal spots and the spots found
+// over the frame, against a rendered pattern's truth.
+class CalibrationCheckTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void init();
+  void cleanup();
+  void overlayMatchesThePatternsTruth();
+  void withoutAPatternPoseItSaysWhy();
+ private:
+  std::unique_ptr<MainWindow> window_;
+};
+
+// The d0 dialog (thesis 4.1): virtual frames of known d0 at known distances, the chart of
+// the iteration, Set d0, capture from the running source.
+class D0DialogTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void init();
+  void cleanup();
+  void virtualFramesGiveTheirKnownD0();
+  void captureTakesTheRunningSourcesFrame();
  private:
   std::unique_ptr<MainWindow> window_;
 };

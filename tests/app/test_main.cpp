@@ -29,8 +29,11 @@ int main(int argc, char** argv) {
   imagepro::app::test::CalibrationWizardTest calibration;
   imagepro::app::test::AnalysisWindowTest analysis;
   imagepro::app::test::CameraSettingsTest camera_settings;
+  imagepro::app::test::CalibrationCheckTest calibration_check;
+  imagepro::app::test::D0DialogTest d0_dialog;
   for (QObject* t : std::initializer_list<QObject*>{&panels, &worker, &virtual_source, &files, &outputs, &settings,
-                                                      &calibration, &analysis, &camera_settings})
+                                                      &calibration, &analysis, &camera_settings, &calibration_check,
+                                                      &d0_dialog})
     failed += QTest::qExec(t, argc, argv);
   return failed == 0 ? 0 : 1;
 }

@@ -234,3 +234,53 @@ TEST(CliReconstruct, StreamProblemsAreNamed) {
 
 }  // namespace
 }  // namespace imagepro
+
+namespace imagepro {
+namespace {
+
+// The constant-velocity motion (thesis A.2) from the command line: render's truth advances
+// by velocity / rate a frame and wraps inside the box, and reconstruct --virtual follows it.
+TEST(CliReconstruction, ConstantVelocityMotionAdvancesAndWraps) {
+  const fs::path dir = freshDir("cli_constant_velocity");
+  // Tx 200 mm/s at 10 Hz: 20 mm a frame, wrapping inside 100 mm about the start (+-50 mm).
+  CliRun r = cli("render --out " + dir.string() + " --frames 8 --rate 10 --mode binary --pose 0,0,0,0,0,800" +
+                 " --motion constant-velocity --velocity 0,5,0,200,0,-30 --box 0,0,0,100,0,0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto truth = readTruth(dir / "truth.csv");
+  ASSERT_EQ(truth.size(), 8u);
+  const double tx[] = {0, 20, 40, -40, -20, 0, 20, 40};
+  for (int i = 0; i < 8; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05d.png", i);
+    const std::vector<double>& p = truth.at(name);
+    EXPECT_NEAR(p[1], 0.5 * i, 1e-6) << name;         // Ry 5 deg/s, never wraps (width 0)
+    EXPECT_NEAR(p[3], tx[i], 1e-6) << name;           // Tx wraps at +-50 mm
+    EXPECT_NEAR(p[5], 800 - 3.0 * i, 1e-6) << name;   // Tz -30 mm/s
+  }
+  // The same velocities reconstructed from the virtual source (no wrap: no jump for the tracker).
+  r = cli("reconstruct --virtual --frames 8 --no-pace --truth --motion constant-velocity --velocity 0,5,0,200,0,-30"
+          " --box 0,0,0,0,0,0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 9u) << r.out;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const auto f = csvFields(rows[i]);
+    ASSERT_EQ(f.size(), 14u) << rows[i];
+    ASSERT_EQ(f[1], "ok") << rows[i];
+    EXPECT_NEAR(std::stod(f[11]), 200.0 / 25.0 * static_cast<double>(i - 1), 1e-6) << rows[i];  // 25 Hz
+    EXPECT_NEAR(std::stod(f[5]), std::stod(f[11]), 1.0) << rows[i];  // Tx against its truth
+  }
+  // Named errors: a malformed list, a negative box, the options without --virtual.
+  r = cli("reconstruct --virtual --frames 1 --velocity 1,2,3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--velocity takes six numbers"), std::string::npos) << r.err;
+  r = cli("render --out " + dir.string() + " --box 0,0,0,-5,0,0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--box"), std::string::npos) << r.err;
+  r = cli("reconstruct --motion constant-velocity " + (dir / "frame_00000.png").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--motion goes with --virtual"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace imagepro

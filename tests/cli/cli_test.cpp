@@ -84,7 +84,9 @@ TEST(Cli, MethodListsComeFromTheEnumTables) {
   const CliRun threshold = cli("threshold --help");
   EXPECT_NE(threshold.out.find("at-mod   AT-Mod: "), std::string::npos) << threshold.out;
   EXPECT_EQ(threshold.out.find("None: "), std::string::npos);  // no threshold to print
-  EXPECT_NE(cli("render --help").out.find("saw-tooth  Saw-tooth: "), std::string::npos);
+  const CliRun render = cli("render --help");
+  EXPECT_NE(render.out.find("saw-tooth          Saw-tooth: "), std::string::npos) << render.out;
+  EXPECT_NE(render.out.find("constant-velocity  Constant velocity: "), std::string::npos) << render.out;
   const CliRun md = cli("settings --methods-markdown");
   EXPECT_EQ(md.exit_code, 0);
   EXPECT_NE(md.out.find("`pipeline.threshold.method`, `pipeline.rethreshold.method`\n"), std::string::npos) << md.out;

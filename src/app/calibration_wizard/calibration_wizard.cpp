@@ -19,6 +19,7 @@
 #include "app/calibration_wizard/intrinsics_page.h"
 #include "app/calibration_wizard/wizard_widgets.h"
 #include "app/main_window/main_window.h"
+#include "app/main_window/owned_dialog.h"
 #include "app/worker/packet_builder.h"
 #include "app/worker/worker.h"
 
@@ -137,14 +138,7 @@ QWidget* CalibrationWizard::buildDistortionPage() {
 
 CalibrationWizard::~CalibrationWizard() = default;
 
-CalibrationWizard& showCalibrationWizard(MainWindow& window) {
-  auto* wizard = window.findChild<CalibrationWizard*>(QString(), Qt::FindDirectChildrenOnly);
-  if (!wizard) wizard = new CalibrationWizard(window);
-  wizard->show();
-  wizard->raise();
-  wizard->activateWindow();
-  return *wizard;
-}
+CalibrationWizard& showCalibrationWizard(MainWindow& window) { return showOwnedDialog<CalibrationWizard>(window); }
 
 QWidget* CalibrationWizard::buildSlot(int i) {
   Slot& s = slots_[static_cast<size_t>(i)];

@@ -9,6 +9,8 @@
 #include <array>
 #include <cmath>
 
+#include "app/main_window/results_text.h"
+
 namespace imagepro::app {
 
 namespace {
@@ -20,6 +22,11 @@ const QColor kDetectedRegion(60, 120, 255); // thesis: blue detected region
 const QColor kEllipse(255, 60, 60);
 const QColor kContour(255, 0, 255);
 const QColor kSpots(255, 200, 0);
+// The live calibration check, as thesis fig. 4.6 draws it: ideal positions red, the
+// matching yellow; the spots found cyan.
+const QColor kIdealSpots(255, 40, 40);
+const QColor kFoundSpots(0, 220, 255);
+const QColor kSpotMatches(255, 230, 0);
 
 QRectF toRectF(const cv::Rect& r) { return QRectF(r.x, r.y, r.width, r.height); }
 
@@ -151,6 +158,52 @@ void FrameView::paintOverlays(QPainter& painter) const {
       painter.drawLine(QPointF(s.x, s.y - arm), QPointF(s.x, s.y + arm));
     }
   }
+  paintCalibrationCheck(painter);
+}
+
+void FrameView::paintCalibrationCheck(QPainter& painter) const {
+  const CalibrationCheck& c = packet_->calibration;
+  if (c.ideal.empty() && c.seen.empty()) return;
+  // Hundreds of marks a frame: square cosmetic points and plain lines, no antialiasing.
+  painter.save();
+  painter.setRenderHint(QPainter::Antialiasing, false);
+  const auto points = [](const std::vector<Eigen::Vector2d>& at) {
+    QPolygonF out;
+    out.reserve(static_cast<qsizetype>(at.size()));
+    for (const Eigen::Vector2d& p : at) out.append(QPointF(p.x(), p.y()));
+    return out;
+  };
+  QPen pen(kSpotMatches);
+  pen.setCosmetic(true);
+  pen.setWidthF(1.0);
+  painter.setPen(pen);
+  QList<QLineF> lines;
+  lines.reserve(static_cast<qsizetype>(c.matches.size()));
+  for (const auto& [i, o] : c.matches)
+    if (i >= 0 && o >= 0 && static_cast<size_t>(i) < c.ideal.size() && static_cast<size_t>(o) < c.seen.size())
+      lines.append(QLineF(c.ideal[i].x(), c.ideal[i].y(), c.seen[o].x(), c.seen[o].y()));
+  painter.drawLines(lines);
+  pen.setWidthF(5.0);
+  pen.setColor(kFoundSpots);
+  painter.setPen(pen);
+  painter.drawPoints(points(c.seen));
+  pen.setWidthF(3.0);
+  pen.setColor(kIdealSpots);
+  painter.setPen(pen);
+  painter.drawPoints(points(c.ideal));
+  painter.restore();
+}
+
+QString FrameView::calibrationCheckText() const {
+  if (!packet_) return {};
+  const CalibrationCheck& c = packet_->calibration;
+  if (c.status == Status::Stopped) return {};
+  if (!ok(c.status)) return tr("Calibration check: %1").arg(statusInWords(c.status));
+  return tr("Calibration check: %1 of %2 spots matched, %3 ambiguous, %4 found")
+      .arg(c.stats.matched)
+      .arg(c.ideal.size())
+      .arg(c.stats.ambiguous)
+      .arg(c.seen.size());
 }
 
 void FrameView::paintNumbers(QPainter& painter) const {
@@ -160,6 +213,17 @@ void FrameView::paintNumbers(QPainter& painter) const {
   font.setPointSizeF(std::max(8.0, font.pointSizeF()));
   font.setBold(true);
   painter.setFont(font);
+  if (const QString check = calibrationCheckText(); !check.isEmpty()) {
+    const QFontMetrics metrics(font);
+    QRectF box = metrics.boundingRect(check);
+    box.adjust(-4, -1, 4, 1);
+    box.moveTopLeft(QPointF(6, 6));
+    painter.setPen(Qt::NoPen);
+    painter.setBrush(QColor(0, 0, 0, 150));
+    painter.drawRoundedRect(box, 3, 3);
+    painter.setPen(ok(p.calibration.status) ? kFoundSpots : QColor(255, 120, 120));
+    painter.drawText(box, Qt::AlignCenter, check);
+  }
   for (const TargetSummary& t : p.result.targets) {
     const QString text = p.ellipse_method == EllipseMethod::Bennett
                              ? tr("S %1  Q %2  Y %3")

@@ -2,7 +2,8 @@
 // The image part of the results area (thesis appendix A.1.2): the background the
 // display options chose, edge pixels or coloured connected paths, the green
 // estimated region, the blue detected region, the fitted ellipse, the contour
-// features and spots, and the fit numbers at the ellipse centre. Zoom with the
+// features and spots, the fit numbers at the ellipse centre, and the live calibration
+// check (the pattern's ideal spots, the spots found and their matching). Zoom with the
 // wheel, pan by dragging, double-click to fit the frame to the view.
 #include <QImage>
 #include <QPointF>
@@ -28,6 +29,8 @@ class FrameView : public QWidget {
   void fitToWindow();
 
   QSize sizeHint() const override { return {660, 500}; }
+  // The live calibration check's line over the frame (empty when the check is off).
+  QString calibrationCheckText() const;
 
  signals:
   void painted();  // a new packet has been drawn (the worker may send the next one)
@@ -44,6 +47,7 @@ class FrameView : public QWidget {
  private:
   void paintOverlays(QPainter& painter) const;
   void paintNumbers(QPainter& painter) const;
+  void paintCalibrationCheck(QPainter& painter) const;
   QPointF toScreen(QPointF image_point) const;
   QSize imageSize() const;
 

@@ -19,6 +19,7 @@
 
 #include "app/panels/calibration_panel.h"
 #include "app/calibration_wizard/calibration_wizard.h"
+#include "app/calibration_wizard/d0_dialog.h"
 #include "app/panels/control_panel.h"
 #include "app/main_window/frame_view.h"
 #include "app/plots/histogram_chart.h"
@@ -161,12 +162,14 @@ void MainWindow::buildDocks() {
   OutputPanel* output = control_panel_->outputPanel();
   connect(output, &OutputPanel::dataOutToggled, this, &MainWindow::dataOutDialog);
   connect(output, &OutputPanel::screenshotRequested, this, &MainWindow::screenshotDialog);
+  connect(output, &OutputPanel::freezeOnScreenshotToggled, this, &MainWindow::setFreezeOnScreenshot);
   connect(output, &OutputPanel::settingsDialogRequested, this, &MainWindow::settingsDialog);
   connect(output, &OutputPanel::saveSettingsRequested, this, &MainWindow::saveSettingsDialog);
   connect(output, &OutputPanel::loadSettingsRequested, this, &MainWindow::loadSettingsDialog);
   connect(output, &OutputPanel::restoreDefaultsRequested, this, &MainWindow::restoreDefaults);
   connect(control_panel_->calibrationPanel(), &CalibrationPanel::wizardRequested, this,
           [this] { showCalibrationWizard(*this); });
+  connect(control_panel_->calibrationPanel(), &CalibrationPanel::d0Requested, this, [this] { showD0Dialog(*this); });
 }
 
 void MainWindow::buildStatusBar() {
@@ -297,6 +300,7 @@ void MainWindow::restoreLayout() {
   }
   control_panel_->restoreState(store);
   last_dir_ = store.value(QStringLiteral("lastDirectory")).toString();
+  setFreezeOnScreenshot(store.value(QStringLiteral("screenshot/freeze"), false).toBool());
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {

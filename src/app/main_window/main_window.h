@@ -12,6 +12,7 @@
 #include "core/pipeline/data_out.h"
 #include "core/settings/settings.h"
 
+class QAction;
 class QLabel;
 class QTimer;
 
@@ -46,6 +47,11 @@ class MainWindow : public QMainWindow {
   void openPaths(const QStringList& paths);      // files or folders: switches to File input
   void openSamples();                            // the shipped sample frames (data_directory.h)
   bool saveScreenshot(const QString& path);
+  // The screenshot option (thesis A.1.1): Screenshot stops a running live source while its
+  // file is chosen and starts it again after. Remembered between runs.
+  void setFreezeOnScreenshot(bool on);
+  bool freezeOnScreenshot() const;
+  bool frozenForScreenshot() const { return frozen_for_screenshot_; }
   void startDataOut(const QString& path, ExistingFile existing, bool replace);
   void stopDataOut();
 
@@ -118,6 +124,8 @@ class MainWindow : public QMainWindow {
   QString data_out_path_;
   QString last_dir_;
   std::int64_t packets_shown_ = 0;
+  QAction* freeze_action_ = nullptr;
+  bool frozen_for_screenshot_ = false;
 };
 
 }  // namespace imagepro::app

@@ -10,9 +10,11 @@
 #include <QMessageBox>
 #include <QPixmap>
 #include <QPushButton>
+#include <QSettings>
 
 #include "app/analysis/analysis_window.h"
 #include "app/calibration_wizard/calibration_wizard.h"
+#include "app/calibration_wizard/d0_dialog.h"
 #include "app/panels/control_panel.h"
 #include "app/main_window/frame_view.h"
 #include "app/main_window/main_window.h"
@@ -48,6 +50,10 @@ void MainWindow::buildMenus() {
   file->addAction(tr("Se&ttings..."), this, &MainWindow::settingsDialog)->setShortcut(QKeySequence(tr("Ctrl+,")));
   file->addSeparator();
   file->addAction(tr("Screens&hot..."), this, &MainWindow::screenshotDialog)->setShortcut(QKeySequence(tr("Ctrl+Shift+S")));
+  freeze_action_ = file->addAction(tr("&Freeze While Saving Screenshot"));
+  freeze_action_->setObjectName(QStringLiteral("screenshotFreezeAction"));
+  freeze_action_->setCheckable(true);
+  connect(freeze_action_, &QAction::toggled, this, &MainWindow::setFreezeOnScreenshot);
   file->addAction(tr("Data &Out..."), this, [this] { dataOutDialog(true); })->setShortcut(QKeySequence(tr("Ctrl+D")));
   file->addSeparator();
   file->addAction(tr("&Quit"), this, &QWidget::close)->setShortcut(QKeySequence::Quit);
@@ -82,6 +88,8 @@ void MainWindow::buildMenus() {
   tools->setToolTipsVisible(true);
   tools->addAction(tr("&Calibration Wizard..."), this, [this] { showCalibrationWizard(*this); })
       ->setToolTip(tr("Lens distortion calibration from up to four images of the calibration pattern (thesis 4.6)"));
+  tools->addAction(tr("Image Plane &Distance d0..."), this, [this] { showD0Dialog(*this); })
+      ->setToolTip(tr("d0 from frames of the target at known distances by the iteration of thesis eq. 4.1"));
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&Keys"), this, &MainWindow::showKeys)->setShortcut(QKeySequence::HelpContents);
@@ -185,15 +193,37 @@ bool MainWindow::saveScreenshot(const QString& path) {
   return true;
 }
 
+void MainWindow::setFreezeOnScreenshot(bool on) {
+  if (freeze_action_ && freeze_action_->isChecked() != on) freeze_action_->setChecked(on);  // comes back here
+  control_panel_->outputPanel()->setFreezeOnScreenshot(on);
+  QSettings().setValue(QStringLiteral("screenshot/freeze"), on);
+}
+
+bool MainWindow::freezeOnScreenshot() const { return freeze_action_ && freeze_action_->isChecked(); }
+
 void MainWindow::screenshotDialog() {
   // Taken now, so the picture is the frame on screen when the button was pressed.
   const QPixmap shot = results_area_->grab();
+  // With the option, a live source stops until the file is chosen: the results area keeps
+  // showing the frame of the screenshot (thesis A.1.1). Files are not live: they go on.
+  const SourceKind kind = control_panel_->sourcePanel()->kind();
+  const bool freeze = freezeOnScreenshot() && worker_->isRunning() && kind != SourceKind::File;
+  if (freeze) {
+    frozen_for_screenshot_ = true;
+    worker_->stop();
+    showInfo(tr("Processing frozen while the screenshot is saved"));
+  }
   const QString name = QStringLiteral("imagepro-%1.png").arg(QDateTime::currentDateTime().toString(QStringLiteral("yyyyMMdd-hhmmss")));
   const QString path = QFileDialog::getSaveFileName(this, tr("Save screenshot"), last_dir_ + QLatin1Char('/') + name,
                                                     tr("PNG images (*.png)"));
-  if (path.isEmpty()) return;
-  if (!shot.save(path, "PNG")) showError(tr("Screenshot not saved: %1 cannot be written").arg(path));
-  else showInfo(tr("Screenshot saved to %1").arg(path));
+  if (!path.isEmpty()) {
+    if (!shot.save(path, "PNG")) showError(tr("Screenshot not saved: %1 cannot be written").arg(path));
+    else showInfo(tr("Screenshot saved to %1").arg(path));
+  }
+  if (freeze) {
+    frozen_for_screenshot_ = false;
+    worker_->start(kind);
+  }
 }
 
 void MainWindow::startDataOut(const QString& path, ExistingFile existing, bool replace) {

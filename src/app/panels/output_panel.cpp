@@ -8,6 +8,7 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QSignalBlocker>
 #include <QSpinBox>
 
 #include "app/settings/settings_binder.h"
@@ -26,6 +27,7 @@ QPushButton* button(const QString& text, const char* name, const QString& toolti
 OutputPanel::OutputPanel(SettingsBinder& binder, QWidget* parent)
     : QWidget(parent),
       data_out_(new QCheckBox(tr("Data Out"))),
+      freeze_(new QCheckBox(tr("Freeze"))),
       data_out_path_(new QLabel),
       stream_(binder.check(tr("Stream"), [](Settings& s) -> auto& { return s.stream.enabled; })) {
   data_out_->setObjectName(QStringLiteral("dataOut"));
@@ -33,6 +35,9 @@ OutputPanel::OutputPanel(SettingsBinder& binder, QWidget* parent)
   data_out_path_->setObjectName(QStringLiteral("dataOutPath"));
   data_out_path_->setWordWrap(true);
   auto* screenshot = button(tr("Screenshot"), "screenshot", tr("Save the results area as a PNG image (Ctrl+Shift+S)"));
+  freeze_->setObjectName(QStringLiteral("screenshotFreeze"));
+  freeze_->setToolTip(tr("Screenshot freezes the processing of a running source while its file is chosen, and "
+                         "resumes it after (thesis appendix A.1.1)"));
   auto* settings = button(tr("Settings..."), "settingsDialog",
                           tr("Target dimensions, camera, distortion and the virtual target's motion (thesis appendix A, Settings menu)"));
   auto* save = button(tr("Save..."), "saveSettings", tr("Save every option to a settings JSON file (Ctrl+S)"));
@@ -59,7 +64,8 @@ OutputPanel::OutputPanel(SettingsBinder& binder, QWidget* parent)
   auto* grid = new QGridLayout(this);
   grid->setContentsMargins(0, 0, 0, 0);
   grid->addWidget(data_out_, 0, 0);
-  grid->addWidget(screenshot, 0, 1, 1, 2);
+  grid->addWidget(screenshot, 0, 1);
+  grid->addWidget(freeze_, 0, 2);
   grid->addWidget(data_out_path_, 1, 0, 1, 3);
   grid->addWidget(stream_, 2, 0);
   grid->addWidget(format, 2, 1, 1, 2);
@@ -71,10 +77,16 @@ OutputPanel::OutputPanel(SettingsBinder& binder, QWidget* parent)
 
   connect(data_out_, &QCheckBox::clicked, this, &OutputPanel::dataOutToggled);
   connect(screenshot, &QPushButton::clicked, this, &OutputPanel::screenshotRequested);
+  connect(freeze_, &QCheckBox::toggled, this, &OutputPanel::freezeOnScreenshotToggled);
   connect(settings, &QPushButton::clicked, this, &OutputPanel::settingsDialogRequested);
   connect(save, &QPushButton::clicked, this, &OutputPanel::saveSettingsRequested);
   connect(load, &QPushButton::clicked, this, &OutputPanel::loadSettingsRequested);
   connect(defaults, &QPushButton::clicked, this, &OutputPanel::restoreDefaultsRequested);
+}
+
+void OutputPanel::setFreezeOnScreenshot(bool on) {
+  const QSignalBlocker quiet(freeze_);
+  freeze_->setChecked(on);
 }
 
 void OutputPanel::setDataOutPath(const QString& path) {

@@ -22,10 +22,14 @@ class OutputPanel : public QWidget {
   void setDataOutPath(const QString& path);
   QCheckBox* dataOutBox() const { return data_out_; }
   QCheckBox* streamBox() const { return stream_; }
+  // The screenshot option: freeze processing while the screenshot is being saved.
+  void setFreezeOnScreenshot(bool on);
+  QCheckBox* freezeBox() const { return freeze_; }
 
  signals:
   void dataOutToggled(bool on);
   void screenshotRequested();
+  void freezeOnScreenshotToggled(bool on);
   void settingsDialogRequested();
   void saveSettingsRequested();
   void loadSettingsRequested();
@@ -33,6 +37,7 @@ class OutputPanel : public QWidget {
 
  private:
   QCheckBox* data_out_;
+  QCheckBox* freeze_;
   QLabel* data_out_path_;
   QCheckBox* stream_;
 };

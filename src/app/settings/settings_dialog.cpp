@@ -1,5 +1,6 @@
 #include "app/settings/settings_dialog.h"
 
+#include <QHBoxLayout>
 #include <QPushButton>
 
 #include "app/panels/panels.h"
@@ -12,6 +13,13 @@ namespace {
 const QString kMm = QStringLiteral(" mm");
 const QString kDeg = QStringLiteral(" deg");
 const QString kPx = QStringLiteral(" px");
+const char* const kPoseParameterNames[] = {"Rx", "Ry", "Rz", "Tx", "Ty", "Tz"};
+
+// Parameter i of a pose-shaped group, in the pose's order (Rx, Ry, Rz, Tx, Ty, Tz).
+double& poseParameter(Pose& p, int i) {
+  double* fields[] = {&p.rx_deg, &p.ry_deg, &p.rz_deg, &p.tx_mm, &p.ty_mm, &p.tz_mm};
+  return *fields[i];
+}
 }  // namespace
 
 SettingsDialog::SettingsDialog(const Settings& settings, QWidget* parent, CameraDevices devices)
@@ -110,19 +118,38 @@ void SettingsDialog::buildVirtual() {
   const char* pose_labels[] = {"Start Rx", "Start Ry", "Start Rz", "Start Tx", "Start Ty", "Start Tz"};
   const char* pose_names[] = {"virtualStartRx", "virtualStartRy", "virtualStartRz",
                               "virtualStartTx", "virtualStartTy", "virtualStartTz"};
-  const auto pose_field = [v](int i) {
-    return [v, i](Settings& s) -> double& {
-      Pose& p = v(s).initial_pose;
-      double* fields[] = {&p.rx_deg, &p.ry_deg, &p.rz_deg, &p.tx_mm, &p.ty_mm, &p.tz_mm};
-      return *fields[i];
-    };
-  };
   for (int i = 0; i < 6; ++i) {
     const bool angle = i < 3;
     f->addRow(tr(pose_labels[i]),
-              named(b.doubleSpin(pose_field(i), 2, angle ? kDeg : kMm),
+              named(b.doubleSpin([v, i](Settings& s) -> double& { return poseParameter(v(s).initial_pose, i); }, 2,
+                                 angle ? kDeg : kMm),
                     pose_names[i]));
   }
+  // The constant-velocity motion (thesis A.2): three parameters a row, named
+  // <name>Rx ... <name>Tz.
+  const auto triple = [&](const QString& label, Pose& (*group)(Settings&), const char* name, int first,
+                          const QString& suffix, const QString& tooltip) {
+    auto* row = new QWidget;
+    auto* layout = new QHBoxLayout(row);
+    layout->setContentsMargins(0, 0, 0, 0);
+    for (int i = first; i < first + 3; ++i) {
+      const QString object = QLatin1String(name) + QLatin1String(kPoseParameterNames[i]);
+      auto* box = b.doubleSpin([group, i](Settings& s) -> double& { return poseParameter(group(s), i); }, 1, suffix);
+      box->setObjectName(object);
+      box->setToolTip(tooltip);
+      layout->addWidget(box);
+    }
+    f->addRow(label, row);
+  };
+  const auto velocity = [](Settings& s) -> Pose& { return s.virtual_scene.motion.velocity; };
+  const auto box = [](Settings& s) -> Pose& { return s.virtual_scene.motion.wrap_box; };
+  const QString velocity_tip = tr("Constant velocity motion: how fast each parameter changes");
+  const QString box_tip = tr("Constant velocity motion: the parameter wraps around inside this width centred on "
+                             "its start value (0: it never wraps)");
+  triple(tr("Velocity Rx Ry Rz"), velocity, "virtualVelocity", 0, QStringLiteral(" deg/s"), velocity_tip);
+  triple(tr("Velocity Tx Ty Tz"), velocity, "virtualVelocity", 3, QStringLiteral(" mm/s"), velocity_tip);
+  triple(tr("Wrap box Rx Ry Rz"), box, "virtualWrapBox", 0, kDeg, box_tip);
+  triple(tr("Wrap box Tx Ty Tz"), box, "virtualWrapBox", 3, kMm, box_tip);
 }
 
 void SettingsDialog::buildScene() {

@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/calibration/calibration_check.h"
 #include "core/pipeline/frame_result.h"
 #include "core/settings/options.h"
 
@@ -36,6 +37,9 @@ struct DisplayPacket {
   QImage target;                          // the target's region, grey or binary (Target::Source/Binary)
   QPoint target_origin;
   QImage edge_overlay;                    // frame-sized, transparent but for edge pixels or coloured paths
+  // The live calibration check (display.calibration_check): status Stopped when off, the
+  // frame's error (NoTarget ...) when it has no pattern pose.
+  CalibrationCheck calibration;
   std::vector<PoseSample> history;        // every frame since the previous packet, this one last
   double hz = 0.0;                        // frames processed per second
   double cpu_percent = 0.0;               // worker thread CPU time over wall time

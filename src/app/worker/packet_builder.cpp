@@ -32,7 +32,7 @@ QImage cropAt(const cv::Mat& image, cv::Point origin, cv::Rect region, QPoint& c
 
 }  // namespace
 
-void buildPacket(const Engine& engine, const FrameResult& result, const PacketMeters& meters,
+void buildPacket(const Engine& engine, const FrameResult& result, const PacketMeters& meters, PacketWorkspace& ws,
                  DisplayPacket& packet) {
   const Settings& settings = engine.settings();
   const DisplayOptions& display = settings.pipeline.display;
@@ -73,6 +73,13 @@ void buildPacket(const Engine& engine, const FrameResult& result, const PacketMe
   const bool paths = display.edges == Ed::ConnectedPaths && ran(ApplicationLevel::Connectivity);
   if (edges || paths)
     packet.edge_overlay = edgeOverlay(result.image_size, edges ? engine.edges() : kNoEdges, paths ? engine.paths() : kNoPaths);
+  if (display.calibration_check) {
+    // The pattern plane's pose is its target's (thesis 4.6 step 3): without one, nothing to place.
+    if (result.pose && ok(result.status))
+      checkCalibrationView(settings, frame.image, *result.pose, ws.calibration, packet.calibration);
+    else
+      packet.calibration.status = ok(result.status) ? Status::NoTarget : result.status;
+  }
 }
 
 QImage edgeOverlay(cv::Size size, const EdgeList& edges, const Paths& paths) {

@@ -1,7 +1,8 @@
 #pragma once
 // Fills a DisplayPacket from the engine's last frame: the frame result plus copies
 // of only what the current display options draw (source, binary, target crop,
-// edge pixels or paths), already converted for painting. Runs in the worker thread.
+// edge pixels or paths), already converted for painting, and with the calibration box
+// ticked the live calibration check of the frame. Runs in the worker thread.
 #include <QString>
 
 #include "app/worker/display_packet.h"
@@ -17,7 +18,12 @@ struct PacketMeters {
   QString source;
 };
 
-void buildPacket(const Engine& engine, const FrameResult& result, const PacketMeters& meters,
+// What building packets keeps from one to the next (the worker thread's own).
+struct PacketWorkspace {
+  CalibrationCheckWorkspace calibration;
+};
+
+void buildPacket(const Engine& engine, const FrameResult& result, const PacketMeters& meters, PacketWorkspace& ws,
                  DisplayPacket& packet);
 
 // A CV_8UC1 image as an RGB32 QImage of its own (empty for an empty or non-grey Mat).

@@ -256,10 +256,15 @@ void Worker::onIdleUpdate() {
 
 void Worker::tick() {
   if (!running_.load() || !source_) return;
-  applyPending();
+  const bool changed = applyPending();
   if (!source_) return;  // a camera that could not be opened anew
   if (!processFrame(true)) {
     doStop();
+    // Options that came with the end of a file list apply to its last frame, still shown.
+    if (changed && kind_ == SourceKind::File && have_file_frame_) {
+      processFrame(false);
+      publish();
+    }
     return;
   }
   if (isFatalSourceError(result_.status)) {
@@ -368,7 +373,7 @@ void Worker::publish() {
   meters.hz = frame_period_s_ > 0.0 && running_.load() ? 1.0 / frame_period_s_ : 0.0;
   meters.cpu_percent = cpu_percent_;
   meters.source = source_ ? QString::fromStdString(source_->describe()) : QString();
-  buildPacket(engine_, result_, meters, *packet);
+  buildPacket(engine_, result_, meters, packet_ws_, *packet);
   if (stream_.isActive()) {
     packet->stream = QString::fromStdString(stream_.report());
     packet->stream_ok = ok(stream_.status());

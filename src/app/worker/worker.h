@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "app/worker/display_packet.h"
+#include "app/worker/packet_builder.h"
 #include "app/worker/source_kind.h"
 #include "app/main_window/virtual_keys.h"
 #include "core/pipeline/data_out.h"
@@ -114,6 +115,7 @@ class Worker : public QObject {
   double cpu_percent_ = 0.0;
 
   std::vector<PoseSample> history_;
+  PacketWorkspace packet_ws_;
   bool display_dirty_ = false;
   std::chrono::steady_clock::time_point last_publish_{};
 

@@ -11,6 +11,7 @@ Status estimateImagePlaneDistance(double focal_length_mm,
     return Status::InvalidSettings;
   const double f = focal_length_mm;  // d0(1)
   double d0 = f;
+  out.history_mm.assign(1, f);
   for (int i = 1; i <= max_iterations; ++i) {
     double depth = 0.0;
     if (const Status s = depthAt(d0, depth); !ok(s)) return s;
@@ -19,6 +20,7 @@ Status estimateImagePlaneDistance(double focal_length_mm,
     out.iterations = i;
     out.d0_mm = next;
     out.depth_mm = depth;
+    out.history_mm.push_back(next);
     if (std::abs(next - d0) < epsilon_mm) {  // eq. 4.2
       // The depth that goes with the converged d0.
       if (const Status s = depthAt(next, depth); !ok(s)) return s;

@@ -8,6 +8,7 @@
 // Since d changes about in proportion to d0 and d >> f, each step shrinks the error by
 // about (f/d)^2: two or three steps reach 1e-6 mm.
 #include <functional>
+#include <vector>
 
 #include "core/common/status.h"
 
@@ -17,6 +18,7 @@ struct ImagePlaneDistanceEstimate {
   double d0_mm = 0.0;     // the converged image plane distance
   double depth_mm = 0.0;  // the target's depth reconstructed with it
   int iterations = 0;     // evaluations of eq. 4.1
+  std::vector<double> history_mm;  // d0(1) = f, then d0 after each step: the iteration converging
 };
 
 // `depthAt(d0, depth)` reconstructs the target's depth (mm along the optical axis) with

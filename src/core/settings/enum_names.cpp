@@ -103,7 +103,9 @@ constexpr EnumEntry<MotionKind> kMotion[] = {
     {MotionKind::Static, "static", "Static", "the target stays put (the keys still move it)"},
     {MotionKind::Sinusoid, "sinusoid", "Sinusoid", "a sinusoid along or about the chosen axis"},
     {MotionKind::SawTooth, "saw-tooth", "Saw-tooth", "a saw-tooth along or about the chosen axis"},
-    {MotionKind::Pendulum, "pendulum", "Pendulum", "a pendulum swinging from a pivot (thesis 5.3.2)"}};
+    {MotionKind::Pendulum, "pendulum", "Pendulum", "a pendulum swinging from a pivot (thesis 5.3.2)"},
+    {MotionKind::ConstantVelocity, "constant-velocity", "Constant velocity",
+     "every parameter at its own constant rate, wrapping around inside a box about the start pose (thesis A.2)"}};
 constexpr EnumEntry<PoseAxis> kAxis[] = {
     {PoseAxis::Tx, "tx", "Tx", "translation along x, mm"}, {PoseAxis::Ty, "ty", "Ty", "translation along y, mm"},
     {PoseAxis::Tz, "tz", "Tz", "translation along z, mm"}, {PoseAxis::Rx, "rx", "Rx", "rotation about x, degrees"},

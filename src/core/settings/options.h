@@ -174,6 +174,9 @@ struct DisplayOptions {
   enum class Target : std::uint8_t { None, Path, Source, Binary } target = Target::Path;
   bool feature_edge = true;
   bool feature_spots = true;
+  // The live calibration check (thesis A.1.1): the calibration pattern's ideal spot
+  // positions and the spots found, drawn over every shown frame (core/calibration/calibration_check.h).
+  bool calibration_check = false;
 };
 
 // Internal Camera Calibration panel (thesis 4.6): the lens distortion iteration.
@@ -210,7 +213,7 @@ enum class RenderMode : std::uint8_t {
   Grey,    // anti-aliased 8-bit grey with optional blur, noise, gradient, clutter
 };
 
-enum class MotionKind : std::uint8_t { Static, Sinusoid, SawTooth, Pendulum };
+enum class MotionKind : std::uint8_t { Static, Sinusoid, SawTooth, Pendulum, ConstantVelocity };
 enum class PoseAxis : std::uint8_t { Tx, Ty, Tz, Rx, Ry, Rz };
 
 struct MotionOptions {
@@ -218,6 +221,11 @@ struct MotionOptions {
   PoseAxis axis = PoseAxis::Tx;
   double amplitude = 100.0;  // mm for translations, degrees for rotations
   double period_s = 4.0;
+  // Constant velocity (thesis A.2, the Settings menu's velocities): per parameter, deg/s
+  // for the rotations and mm/s for the translations, inside a wrap-around box of the
+  // given full width (deg, mm) centred on the initial pose; a width of 0 never wraps.
+  Pose velocity{0.0, 20.0, 0.0, 100.0, 0.0, 0.0};
+  Pose wrap_box{0.0, 120.0, 360.0, 400.0, 300.0, 600.0};
 };
 
 // A target hanging from a pivot below it (+Y is down), facing the camera, swinging in

@@ -20,6 +20,21 @@ using json = nlohmann::ordered_json;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// A group of six per-parameter values in the pose's order (Rx, Ry, Rz, Tx, Ty, Tz), the
+// rotations' and the translations' each in their own range.
+template <class Visitor>
+void poseGroup(Visitor& v, const char* key, Pose& p, const std::array<const char*, 6>& names, double angle_lo,
+               double angle_hi, double mm_lo, double mm_hi) {
+  v.object(key, [&] {
+    v.field(names[0], p.rx_deg, angle_lo, angle_hi);
+    v.field(names[1], p.ry_deg, angle_lo, angle_hi);
+    v.field(names[2], p.rz_deg, angle_lo, angle_hi);
+    v.field(names[3], p.tx_mm, mm_lo, mm_hi);
+    v.field(names[4], p.ty_mm, mm_lo, mm_hi);
+    v.field(names[5], p.tz_mm, mm_lo, mm_hi);
+  });
+}
+
 // Walks every key of the settings once. The same walk reads and writes, so a key,
 // its place in the document and its valid range are written down exactly once.
 template <class Visitor>
@@ -77,6 +92,10 @@ void visitSettings(Visitor& v, Settings& s) {
       v.field("axis", o.motion.axis);
       v.field("amplitude", o.motion.amplitude, -kInf, kInf);
       v.field("period_s", o.motion.period_s, 1e-6, kInf);
+      poseGroup(v, "velocity", o.motion.velocity, {"rx_deg_s", "ry_deg_s", "rz_deg_s", "tx_mm_s", "ty_mm_s", "tz_mm_s"},
+                -1e4, 1e4, -1e6, 1e6);
+      poseGroup(v, "wrap_box", o.motion.wrap_box, {"rx_deg", "ry_deg", "rz_deg", "tx_mm", "ty_mm", "tz_mm"}, 0.0,
+                360.0, 0.0, 1e6);
     });
     v.object("pendulum", [&] {
       v.field("length_mm", o.pendulum.length_mm, 1e-6, kInf);
@@ -177,6 +196,7 @@ void visitSettings(Visitor& v, Settings& s) {
       v.field("target", p.display.target);
       v.field("feature_edge", p.display.feature_edge);
       v.field("feature_spots", p.display.feature_spots);
+      v.field("calibration_check", p.display.calibration_check);
     });
     v.object("calibration", [&] {
       v.field("relative_change", p.calibration.relative_change, 1e-12, 1.0);

@@ -47,6 +47,12 @@ double omega0(const PendulumOptions& p) {
   return std::sqrt(p.gravity_m_s2 * 1000.0 / p.length_mm);  // rad/s, lengths in mm
 }
 
+// `offset` brought into [-width/2, width/2) by whole widths; a width of 0 leaves it as it is.
+double wrapped(double offset, double width) {
+  if (!(width > 0.0)) return offset;
+  return offset - width * std::floor(offset / width + 0.5);
+}
+
 }  // namespace
 
 double pendulumPeriodS(const PendulumOptions& pendulum) {
@@ -97,6 +103,17 @@ Pose virtualPoseAt(const VirtualSceneOptions& scene, double t_s) {
     case MotionKind::Pendulum:
       pose = pendulumPoseAtAngle(scene, pendulumAngleDeg(scene.pendulum, t_s));
       break;
+    case MotionKind::ConstantVelocity: {
+      const Pose& v = m.velocity;
+      const Pose& box = m.wrap_box;
+      pose.rx_deg += wrapped(v.rx_deg * t_s, box.rx_deg);
+      pose.ry_deg += wrapped(v.ry_deg * t_s, box.ry_deg);
+      pose.rz_deg += wrapped(v.rz_deg * t_s, box.rz_deg);
+      pose.tx_mm += wrapped(v.tx_mm * t_s, box.tx_mm);
+      pose.ty_mm += wrapped(v.ty_mm * t_s, box.ty_mm);
+      pose.tz_mm += wrapped(v.tz_mm * t_s, box.tz_mm);
+      break;
+    }
   }
   return pose;
 }

@@ -20,6 +20,11 @@
 //               function sn computed by the arithmetic-geometric mean. Period
 //               4 K(k) / omega0, which tends to eq. 5.1 (2 pi sqrt(L / g)) for small
 //               amplitudes. t = 0 is the lowest point, moving towards +swing direction.
+//  * constant velocity: each parameter of initial_pose advances by velocity * t and wraps
+//               around inside a box centred on initial_pose (wrap_box, its full width per
+//               parameter): leaving it on one side, the target comes back in on the other,
+//               as in the thesis's Settings menu velocities (appendix A.2). A width of 0
+//               lets that parameter run on.
 #include "core/common/geometry.h"
 #include "core/settings/options.h"
 

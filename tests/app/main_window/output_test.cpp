@@ -1,16 +1,21 @@
 // Screenshot writes the results area as PNG; Data Out writes the pose CSV of every
 // processed frame and never replaces a file unasked; the stream sends every frame to
 // a reader and names its problems; the plots record and export.
+#include <QAction>
+#include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
 #include <QFile>
+#include <QFileDialog>
 #include <QFileInfo>
 #include <QImage>
 #include <QLabel>
 #include <QLineEdit>
 #include <QSpinBox>
 #include <QStatusBar>
+#include <QPushButton>
 #include <QTest>
+#include <QTimer>
 
 #include <nlohmann/json.hpp>
 
@@ -94,6 +99,74 @@ void OutputTest::screenshotToBadPathShowsError() {
   const QString path = scratchDir(QStringLiteral("bad")) + QStringLiteral("/no/such/folder/shot.png");
   QVERIFY(!w.saveScreenshot(path));
   QVERIFY(w.lastError().contains(path));
+}
+
+// The screenshot option (thesis A.1.1): while the file is being chosen the live source is
+// stopped, the frame stays; after, it runs on. Without the option it never stops.
+void OutputTest::screenshotFreezesProcessingWhileSaving() {
+  MainWindow& w = *window_;
+  w.setFreezeOnScreenshot(false);  // the option is remembered: start from off whatever ran before
+  auto* freeze = w.findChild<QCheckBox*>(QStringLiteral("screenshotFreeze"));
+  QVERIFY(freeze && !freeze->isChecked());
+  freeze->click();
+  QVERIFY(w.freezeOnScreenshot());
+  w.selectSource(SourceKind::Virtual);
+  w.startSource();
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.index >= 3; }));
+  const QString dir = scratchDir(QStringLiteral("screenshot_freeze"));
+
+  // While the save dialog is open: answers what it saw, then saves to `path`.
+  struct Seen {
+    bool dialog = false, frozen = false;
+    std::int64_t before = -1, after = -1;
+  };
+  const auto screenshotThrough = [&w](const QString& path, Seen& seen) {
+    QTimer::singleShot(0, &w, [&w, &seen, path] {
+      QFileDialog* dialog = nullptr;
+      for (int i = 0; i < 500 && !dialog; ++i) {
+        dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
+        if (!dialog) QTest::qWait(10);
+      }
+      if (!dialog) return;
+      seen.dialog = true;
+      QTest::qWait(300);  // the queued stop has reached the worker
+      seen.frozen = w.frozenForScreenshot() && !w.worker()->isRunning();
+      seen.before = w.worker()->framesProcessed();
+      QTest::qWait(300);
+      seen.after = w.worker()->framesProcessed();
+      // The name typed in, as the operator would (selectFile keeps the suggested name here).
+      if (auto* name = dialog->findChild<QLineEdit*>(QStringLiteral("fileNameEdit"))) name->setText(path);
+      else dialog->selectFile(path);
+      static_cast<QDialog*>(dialog)->accept();  // public as QDialog's
+    });
+    w.findChild<QPushButton*>(QStringLiteral("screenshot"))->click();  // returns when the dialog closes
+  };
+
+  Seen frozen;
+  const QString path = dir + QStringLiteral("/frozen.png");
+  screenshotThrough(path, frozen);
+  QVERIFY(frozen.dialog);
+  QVERIFY(frozen.frozen);
+  QCOMPARE(frozen.after, frozen.before);  // no frame processed while the operator chose the file
+  QVERIFY2(QFileInfo::exists(path), qPrintable(w.lastError() + QLatin1Char(' ') + w.statusBar()->currentMessage()));
+  QVERIFY(!w.frozenForScreenshot());
+  QTRY_VERIFY_WITH_TIMEOUT(w.worker()->isRunning(), 5000);  // resumed
+  const std::int64_t resumed = w.worker()->framesProcessed();
+  QTRY_VERIFY_WITH_TIMEOUT(w.worker()->framesProcessed() > resumed + 3, 5000);
+
+  // The option off (also from the File menu's action): the source runs on through the dialog.
+  auto* action = w.findChild<QAction*>(QStringLiteral("screenshotFreezeAction"));
+  QVERIFY(action && action->isChecked());
+  action->trigger();
+  QVERIFY(!w.freezeOnScreenshot());
+  QVERIFY(!freeze->isChecked());
+  Seen running;
+  screenshotThrough(dir + QStringLiteral("/running.png"), running);
+  QVERIFY(running.dialog);
+  QVERIFY(!running.frozen);
+  QVERIFY(running.after > running.before);
+  w.stopSource();
+  QTRY_VERIFY(!w.worker()->isRunning());
 }
 
 void OutputTest::dataOutWritesEveryFrame() {

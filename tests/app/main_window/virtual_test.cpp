@@ -2,6 +2,9 @@
 #include <QCoreApplication>
 #include <QElapsedTimer>
 #include <QFileInfo>
+#include <QComboBox>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
 #include <QPushButton>
 #include <QSpinBox>
 #include <QTest>
@@ -13,6 +16,7 @@
 #include "app/main_window/frame_view.h"
 #include "app/main_window/main_window.h"
 #include "app/panels/source_panel.h"
+#include "app/settings/settings_dialog.h"
 #include "app/worker/worker.h"
 #include "app_test_classes.h"
 #include "app_test_support.h"
@@ -173,6 +177,39 @@ void VirtualTest::missingCameraShowsAnError() {
   w.startSource();
   QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.truth.has_value(); }));
   w.stopSource();
+}
+
+// The constant-velocity motion from the Settings dialog's Virtual page (thesis A.2): the
+// frames' true Tx advances at the velocity and wraps inside the box.
+void VirtualTest::constantVelocityFromTheSettingsDialog() {
+  MainWindow& w = *window_;
+  w.findChild<QPushButton*>(QStringLiteral("settingsDialog"))->click();
+  auto* dialog = w.findChild<SettingsDialog*>();
+  QVERIFY(dialog);
+  QVERIFY(choose(dialog->findChild<QComboBox*>(QStringLiteral("virtualMotion")), MotionKind::ConstantVelocity));
+  const char* zero[] = {"virtualVelocityRx", "virtualVelocityRy", "virtualVelocityRz", "virtualVelocityTy",
+                        "virtualVelocityTz"};
+  for (const char* name : zero) dialog->findChild<QDoubleSpinBox*>(QLatin1String(name))->setValue(0.0);
+  dialog->findChild<QDoubleSpinBox*>(QStringLiteral("virtualVelocityTx"))->setValue(250.0);
+  dialog->findChild<QDoubleSpinBox*>(QStringLiteral("virtualWrapBoxTx"))->setValue(300.0);
+  dialog->findChild<QDialogButtonBox*>()->button(QDialogButtonBox::Ok)->click();
+  QVERIFY(waitForApplied(w, [](const Settings& s) {
+    const MotionOptions& m = s.virtual_scene.motion;
+    return m.kind == MotionKind::ConstantVelocity && m.velocity.tx_mm == 250.0 && m.wrap_box.tx_mm == 300.0 &&
+           m.velocity.ry_deg == 0.0;
+  }));
+  w.selectSource(SourceKind::Virtual);
+  w.startSource();
+  // Past the first wrap (150 mm at 250 mm/s: 0.6 s).
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.truth && r.timestamp_s > 0.8; }, 20000));
+  w.stopSource();
+  QTRY_VERIFY(!w.worker()->isRunning());
+  const FrameResult& r = w.frameView()->packet()->result;
+  const double advanced = 250.0 * r.timestamp_s;
+  const double wrapped = advanced - 300.0 * std::floor(advanced / 300.0 + 0.5);
+  QVERIFY2(std::abs(r.truth->tx_mm - wrapped) < 1e-6, qPrintable(QString::number(r.truth->tx_mm)));
+  QVERIFY(r.truth->tx_mm >= -150.0 && r.truth->tx_mm < 150.0);
+  QCOMPARE(r.truth->ry_deg, 0.0);
 }
 
 }  // namespace imagepro::app::test

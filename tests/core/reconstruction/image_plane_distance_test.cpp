@@ -24,6 +24,12 @@ TEST(ImagePlaneDistance, ConvergesOnADepthProportionalToD0) {
   EXPECT_NEAR(est.d0_mm, d0, 1e-8);
   EXPECT_NEAR(est.depth_mm, z, 1e-6);
   EXPECT_LE(est.iterations, 6);
+  // The history starts at f and ends at the estimate, each step closer to d0 than the last.
+  ASSERT_EQ(est.history_mm.size(), static_cast<size_t>(est.iterations) + 1);
+  EXPECT_EQ(est.history_mm.front(), f);
+  EXPECT_EQ(est.history_mm.back(), est.d0_mm);
+  for (size_t i = 1; i < est.history_mm.size(); ++i)
+    EXPECT_LE(std::abs(est.history_mm[i] - d0), std::abs(est.history_mm[i - 1] - d0)) << i;
 }
 
 TEST(ImagePlaneDistance, NamedErrors) {

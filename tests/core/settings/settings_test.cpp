@@ -39,6 +39,27 @@ TEST(Settings, DefaultsRoundTrip) {
   EXPECT_DOUBLE_EQ(b.camera.distortion.k2, kThesisCameraDistortion.k2);
 }
 
+// The constant-velocity motion's velocities and wrap-around box (thesis A.2) under virtual.motion.
+TEST(Settings, ConstantVelocityMotionRoundTrip) {
+  Settings a;
+  a.virtual_scene.motion.kind = MotionKind::ConstantVelocity;
+  a.virtual_scene.motion.velocity = Pose{1, -2, 3, 40, -50, 60};
+  a.virtual_scene.motion.wrap_box = Pose{10, 20, 30, 400, 500, 0};
+  const std::string text = settingsToJson(a);
+  EXPECT_NE(text.find("\"constant-velocity\""), std::string::npos);
+  EXPECT_NE(text.find("\"tx_mm_s\""), std::string::npos);
+  Settings b;
+  std::string err;
+  ASSERT_EQ(settingsFromJson(text, b, err), Status::Ok) << err;
+  EXPECT_EQ(settingsToJson(b), text);
+  EXPECT_EQ(b.virtual_scene.motion.velocity.ty_mm, -50);
+  EXPECT_EQ(b.virtual_scene.motion.wrap_box.rz_deg, 30);
+  err = loadError(R"({"virtual": {"motion": {"wrap_box": {"tx_mm": -1}}}})");
+  EXPECT_NE(err.find("virtual.motion.wrap_box.tx_mm: value -1 out of range"), std::string::npos) << err;
+  err = loadError(R"({"virtual": {"motion": {"velocity": {"speed": 1}}}})");
+  EXPECT_NE(err.find("virtual.motion.velocity.speed"), std::string::npos) << err;
+}
+
 TEST(Settings, CameraSourceRoundTrip) {
   Settings a;
   a.camera_source.device = "/dev/video2";

@@ -72,6 +72,48 @@ TEST(VirtualMotion, SawToothZigZagsAtConstantSpeed) {
   EXPECT_NEAR(virtualPoseAt(s, 1.0).rx_deg, s.initial_pose.rx_deg, 1e-12);
 }
 
+TEST(VirtualMotion, ConstantVelocityAdvancesByVelocityTimesDt) {
+  VirtualSceneOptions s = motionScene(MotionKind::ConstantVelocity, PoseAxis::Tx, 0, 1);
+  s.motion.velocity = Pose{2, -3, 5, 40, -25, 10};
+  s.motion.wrap_box = Pose{0, 0, 0, 0, 0, 0};  // no wrapping: a straight run
+  expectPose(virtualPoseAt(s, 0.0), s.initial_pose);
+  const double dt = 0.04;  // one frame at 25 Hz
+  for (double t : {0.0, 0.7, 3.1}) {
+    const Pose a = virtualPoseAt(s, t), b = virtualPoseAt(s, t + dt);
+    expectPose(Pose{b.rx_deg - a.rx_deg, b.ry_deg - a.ry_deg, b.rz_deg - a.rz_deg, b.tx_mm - a.tx_mm,
+                    b.ty_mm - a.ty_mm, b.tz_mm - a.tz_mm},
+               Pose{2 * dt, -3 * dt, 5 * dt, 40 * dt, -25 * dt, 10 * dt}, 1e-9);
+  }
+  expectPose(virtualPoseAt(s, 2.0), Pose{5 + 4, -3 - 6, 2 + 10, 10 + 80, -20 - 50, 800 + 20});
+}
+
+TEST(VirtualMotion, ConstantVelocityWrapsInsideTheBox) {
+  VirtualSceneOptions s = motionScene(MotionKind::ConstantVelocity, PoseAxis::Tx, 0, 1);
+  s.motion.velocity = Pose{0, 30, 0, 100, -60, 0};
+  s.motion.wrap_box = Pose{0, 120, 360, 400, 300, 600};
+  const Pose& p0 = s.initial_pose;
+  // Tx leaves the box (+-200 mm about 10) after 2 s and comes back in on the other side.
+  EXPECT_NEAR(virtualPoseAt(s, 1.9).tx_mm, p0.tx_mm + 190, 1e-9);
+  EXPECT_NEAR(virtualPoseAt(s, 2.1).tx_mm, p0.tx_mm - 190, 1e-9);
+  EXPECT_NEAR(virtualPoseAt(s, 5.0).tx_mm, p0.tx_mm + 100, 1e-9);  // 500 mm: once round, then 100
+  // Ty runs the other way: it leaves at -150 and re-enters at +150.
+  EXPECT_NEAR(virtualPoseAt(s, 2.4).ty_mm, p0.ty_mm - 144, 1e-9);
+  EXPECT_NEAR(virtualPoseAt(s, 2.6).ty_mm, p0.ty_mm + 144, 1e-9);
+  // Ry wraps at +-60 deg; Tz and Rx have no velocity and stay.
+  EXPECT_NEAR(virtualPoseAt(s, 2.5).ry_deg, p0.ry_deg - 45, 1e-9);
+  for (double t = 0.0; t < 30.0; t += 0.37) {
+    const Pose p = virtualPoseAt(s, t);
+    EXPECT_GE(p.tx_mm, p0.tx_mm - 200);
+    EXPECT_LT(p.tx_mm, p0.tx_mm + 200);
+    EXPECT_GE(p.ty_mm, p0.ty_mm - 150);
+    EXPECT_LT(p.ty_mm, p0.ty_mm + 150);
+    EXPECT_GE(p.ry_deg, p0.ry_deg - 60);
+    EXPECT_LT(p.ry_deg, p0.ry_deg + 60);
+    EXPECT_EQ(p.tz_mm, p0.tz_mm);
+    EXPECT_EQ(p.rx_deg, p0.rx_deg);
+  }
+}
+
 TEST(VirtualMotion, PendulumPeriodMatchesTheory) {
   PendulumOptions p;
   p.length_mm = 444;
