@@ -53,9 +53,9 @@ void applyStoredControls(CameraSource& camera, const std::map<std::string, std::
   std::vector<std::pair<std::string, std::int64_t>> pending;
   for (const CameraControl& c : all)
     if (const auto it = controls.find(c.key); it != controls.end()) pending.emplace_back(it->first, it->second);
-  for (const auto& [key, value] : controls)
-    if (std::none_of(all.begin(), all.end(), [&](const CameraControl& c) { return c.key == key; }))
-      pending.emplace_back(key, value);
+  for (const auto& stored : controls)  // not a structured binding: clang 14 cannot capture one
+    if (std::none_of(all.begin(), all.end(), [&](const CameraControl& c) { return c.key == stored.first; }))
+      pending.emplace_back(stored.first, stored.second);
 
   struct Refused {
     std::string key;
