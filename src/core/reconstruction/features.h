@@ -110,7 +110,10 @@ Status extractContour(ContourMode mode, const cv::Mat& grey, const cv::Rect& cro
                       std::vector<Eigen::Vector2d>& points);
 
 // The two spots (image px): SpotsNotFound with fewer than two, AmbiguousSpots with more.
+// Their centres are darkness-weighted centroids, then with `weightedCentres` refined under
+// a Gaussian window that follows the spot (ReconstructionOptions::weighted_spot_centres).
 Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& detected,
-                    const TargetGeometry& target, FeatureWorkspace& ws, SpotFeatures& spots);
+                    const TargetGeometry& target, bool weightedCentres, FeatureWorkspace& ws,
+                    SpotFeatures& spots);
 
 }  // namespace imagepro

@@ -130,7 +130,8 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
   if (!ok(contourStatus)) return fail(out.steps.contour, contourStatus);
   out.steps.contour = Status::Ok;
 
-  const Status spotStatus = extractSpots(grey, out.crop, detected, config.target, fw, out.spots);
+  const Status spotStatus = extractSpots(grey, out.crop, detected, config.target,
+                                         config.options.weighted_spot_centres, fw, out.spots);
   if (!ok(spotStatus)) return fail(out.steps.spots, spotStatus);
   out.steps.spots = Status::Ok;
 

@@ -141,6 +141,9 @@ struct ReconstructionOptions {
   // fixes the normal poorly (docs/reconstruction.md, docs/accuracy.md).
   bool centre_spot_normal = true;
   bool refine_pose = false;  // Levenberg-Marquardt steps against the rim's points and the spots (refine.h)
+  // Spot centres under a Gaussian window that follows the spot, instead of the plain
+  // darkness-weighted centroid of the spot's box (features.h; docs/reconstruction.md).
+  bool weighted_spot_centres = true;
   int crop_margin_px = 4;
   // Sub-pixel contour mode only (the pixel modes keep the thesis's rule, unchecked).
   // Self-check (docs/reconstruction.md): a pose that puts a spot's image further than this
@@ -153,7 +156,7 @@ struct ReconstructionOptions {
   // their normals lie more than ambiguity_min_deg apart, the frame is AmbiguousPose (a
   // tracked stream takes the one nearer the last pose).
   double ambiguity_ratio = 1.5;
-  double ambiguity_margin_px = 0.15;
+  double ambiguity_margin_px = 0.1;
   double ambiguity_min_deg = 5.0;
 };
 
