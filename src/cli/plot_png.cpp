@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 
 namespace imagepro::cli {
@@ -69,14 +70,45 @@ bool writePlotPng(const std::string& path, const Plot& plot, std::string& error,
   cv::putText(img, plot.x_label, {area.x + area.width / 2 - 40, size.height - 12}, font, 0.45, ink, 1, cv::LINE_AA);
   cv::putText(img, plot.y_label, {8, top - 8}, font, 0.45, ink, 1, cv::LINE_AA);
 
-  int legend_y = top + 18;
-  for (const auto& s : plot.series) {
-    std::vector<cv::Point> pts;
+  std::vector<std::vector<cv::Point>> points(plot.series.size());
+  for (std::size_t k = 0; k < plot.series.size(); ++k) {
+    const PlotSeries& s = plot.series[k];
     for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
-      if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) pts.push_back(px(s.x[i], s.y[i]));
-    if (pts.size() >= 2) cv::polylines(img, pts, false, s.colour, 1, cv::LINE_AA);
-    cv::line(img, {area.x + area.width - 170, legend_y - 4}, {area.x + area.width - 145, legend_y - 4}, s.colour, 2);
-    cv::putText(img, s.name, {area.x + area.width - 140, legend_y}, font, 0.42, ink, 1, cv::LINE_AA);
+      if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) points[k].push_back(px(s.x[i], s.y[i]));
+    if (s.dots)
+      for (const cv::Point& p : points[k]) cv::circle(img, p, 3, s.colour, cv::FILLED, cv::LINE_AA);
+    else if (points[k].size() >= 2)
+      cv::polylines(img, points[k], false, s.colour, 1, cv::LINE_AA);
+  }
+
+  // The legend, on white, in the corner of the plot area that covers the fewest points
+  // (top right when several cover as few).
+  const cv::Size legend(178, 18 * static_cast<int>(plot.series.size()) + 6);
+  const int inset = 4;
+  const cv::Point corners[4] = {{area.br().x - legend.width - inset, area.y + inset},
+                                {area.x + inset, area.y + inset},
+                                {area.br().x - legend.width - inset, area.br().y - legend.height - inset},
+                                {area.x + inset, area.br().y - legend.height - inset}};
+  cv::Rect box(corners[0], legend);
+  std::size_t fewest = SIZE_MAX;
+  for (const cv::Point& corner : corners) {
+    const cv::Rect r(corner, legend);
+    std::size_t covered = 0;
+    for (const auto& pts : points)
+      for (const cv::Point& p : pts) covered += r.contains(p);
+    if (covered < fewest) fewest = covered, box = r;
+  }
+  if (!plot.series.empty()) {
+    cv::rectangle(img, box, cv::Scalar(255, 255, 255), cv::FILLED);
+    cv::rectangle(img, box, grid, 1);
+  }
+  int legend_y = box.y + 18;
+  for (const PlotSeries& s : plot.series) {
+    if (s.dots)
+      cv::circle(img, {box.x + 21, legend_y - 4}, 3, s.colour, cv::FILLED, cv::LINE_AA);
+    else
+      cv::line(img, {box.x + 8, legend_y - 4}, {box.x + 33, legend_y - 4}, s.colour, 2);
+    cv::putText(img, s.name, {box.x + 38, legend_y}, font, 0.42, ink, 1, cv::LINE_AA);
     legend_y += 18;
   }
   try {
