@@ -4,6 +4,9 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 #include "core/common/atomic_file.h"
@@ -58,6 +61,28 @@ TEST(Studies, EllipseLibraryTheDefaultRuleClassifiesTheBinaryLibrary) {
   ASSERT_EQ(rows.size(), 8u) << r.out;  // header, rule, two thesis rows, four of ours
   EXPECT_EQ(rows[4], "| direct fit, E_rel ≤ 0.02 + trace (default) | 70 of 70 | 0 of 67 | this implementation |");
   EXPECT_EQ(studies("ellipse-library --table grey").exit_code, 2);
+}
+
+// ellipse-library --plots writes the thesis's per-image figures of the library as
+// charts, and prints no table; --plots with --table is a usage error.
+TEST(Studies, EllipseLibraryPlotsTheLibraryPerImage) {
+  const fs::path dir = freshDir("studies_library_plots");
+  const CliRun r = studies("ellipse-library --plots " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  for (const char* name : {"edge-pixels", "symmetry", "score", "quality", "peak-share", "relative-error", "length",
+                           "rotation", "aspect"}) {
+    const cv::Mat chart = cv::imread((dir / (std::string("ellipse-library-") + name + ".png")).string());
+    ASSERT_FALSE(chart.empty()) << name;
+    EXPECT_EQ(chart.size(), cv::Size(900, 420)) << name;
+    // Both shapes' dots are drawn: the rectangles' red and the ellipses' blue.
+    cv::Mat red, blue;
+    cv::inRange(chart, cv::Scalar(0, 50, 200), cv::Scalar(20, 70, 230), red);
+    cv::inRange(chart, cv::Scalar(190, 70, 0), cv::Scalar(210, 90, 20), blue);
+    EXPECT_GT(cv::countNonZero(red), 100) << name;
+    EXPECT_GT(cv::countNonZero(blue), 100) << name;
+  }
+  EXPECT_EQ(studies("ellipse-library --plots " + dir.string() + " --table methods").exit_code, 2);
 }
 
 // The accuracy study's virtual part end to end on the smallest run: a complete report
