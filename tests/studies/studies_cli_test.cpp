@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
 #include <string>
 
 #include "core/common/atomic_file.h"
@@ -83,6 +84,40 @@ TEST(Studies, EllipseLibraryPlotsTheLibraryPerImage) {
     EXPECT_GT(cv::countNonZero(blue), 100) << name;
   }
   EXPECT_EQ(studies("ellipse-library --plots " + dir.string() + " --table methods").exit_code, 2);
+}
+
+// track-study writes the tracking runs of thesis figs. 3.7-3.12 beside its report: one
+// chart each, listed in a table whose largest errors are those of a working tracker.
+TEST(Studies, TrackStudyWritesTheTrackingRuns) {
+  const fs::path dir = freshDir("studies_track");
+  const CliRun r = studies("track-study --frames 60 --out " + (dir / "tracking.md").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string md, e;
+  ASSERT_TRUE(readWholeFile((dir / "tracking.md").string(), md, e)) << e;
+  const std::size_t section = md.find("## The tracking runs (thesis figs. 3.7-3.12)");
+  ASSERT_NE(section, std::string::npos);
+  std::vector<std::string> rows;
+  for (const std::string& line : lines(md.substr(section)))
+    if (line.rfind("| 3.", 0) == 0) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 6u) << md.substr(section);
+  const char* files[] = {"tracking-sinusoid.png",     "tracking-sinusoid-3d.png",  "tracking-saw-tooth-2d.png",
+                         "tracking-saw-tooth-3d.png", "tracking-pendulum-2d.png", "tracking-pendulum-3d.png"};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_NE(rows[i].find(std::string("`") + files[i] + "`"), std::string::npos) << rows[i];
+    EXPECT_NE(md.find(std::string("](") + files[i] + ")"), std::string::npos) << files[i];
+    const cv::Mat chart = cv::imread((dir / files[i]).string());
+    ASSERT_FALSE(chart.empty()) << files[i];
+    EXPECT_EQ(chart.size(), cv::Size(900, 420));
+    // The largest error: the column before the plot's; the saw-tooth's turns cost most.
+    std::vector<std::string> cells;
+    std::istringstream row(rows[i]);
+    for (std::string cell; std::getline(row, cell, '|');) cells.push_back(cell);
+    ASSERT_GE(cells.size(), 7u) << rows[i];  // an empty cell before the first '|'
+    const double largest = std::stod(cells[5]);
+    EXPECT_GT(largest, 0.0) << rows[i];
+    EXPECT_LT(largest, 20.0) << rows[i];
+  }
+  EXPECT_TRUE(fs::exists(dir / "tracking-critical-r.png"));
 }
 
 // The accuracy study's virtual part end to end on the smallest run: a complete report
