@@ -49,7 +49,7 @@ timing_lines='^Calibration time on the machine that wrote this: '
 
 # The generators: name, cost (cheap: seconds; slow: minutes or a display), what they write.
 generators=(
-  "tracking|cheap|docs/tracking.md, docs/tracking-sinusoid.png, docs/tracking-critical-r.png (track-study, under 1 s)"
+  "tracking|cheap|docs/tracking.md, docs/tracking-*.png (track-study: the critical r, the runs of figs. 3.7-3.12; under 1 s)"
   "calibration|cheap|docs/calibration.md above its hand-written sections (calibration-study, about 15 s of CPU)"
   "blocks|cheap|the generated blocks of docs/*.md (each a few seconds at most)"
   "case-study-figures|cheap|docs/case-studies-*.png (two-targets --plot, pendulum --plots, 2 s)"
