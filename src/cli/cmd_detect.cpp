@@ -67,14 +67,6 @@ void drawOverlay(const Settings& s, Stage& st, Status status, cv::Mat& out) {
   }
 }
 
-// A folder for pictures, created when missing; `option` names it in the error.
-std::filesystem::path outputFolder(const std::string& option, const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir)) throw InputError("--" + option + ": cannot create folder \"" + dir + "\"");
-  return dir;
-}
-
 void writePicture(const std::string& option, const std::filesystem::path& out, const cv::Mat& picture) {
   bool written = false;
   try {

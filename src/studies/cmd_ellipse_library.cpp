@@ -247,9 +247,6 @@ void writeLibraryPlots(const std::vector<ImageMeasures>& measures, const std::ve
 }
 
 void libraryPlots(const Settings& base, const std::filesystem::path& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir)) throw InputError("--plots: cannot create folder \"" + dir.string() + "\"");
   const EllipseOptions& o = settingsFor(base, Rule::Bennett, -1).pipeline.ellipse;
   const std::vector<Figure> figures = {
       {"ellipse-library-edge-pixels.png", "Edge pixels of the outline (thesis fig. 2.18)", "edge pixels",
@@ -280,7 +277,7 @@ int run(const Args& args) {
   args.rejectUnknown({"table", "plots"});
   if (const auto dir = args.value("plots")) {
     if (args.has("table")) throw UsageError("--plots and --table: one or the other");
-    libraryPlots(cli::loadConfig(args), *dir);
+    libraryPlots(cli::loadConfig(args), cli::outputFolder("plots", *dir));
     return 0;
   }
   const std::string table = args.valueOr("table", "methods");
