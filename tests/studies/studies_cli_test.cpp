@@ -28,10 +28,11 @@ TEST(Studies, OverviewListsTheStudiesAndEachHasHelp) {
   const CliRun r = studies("--help");
   ASSERT_EQ(r.exit_code, 0);
   for (const char* c :
-       {"accuracy", "calibration-study", "track-study", "pendulum-study", "ellipse-library", "bench-peers"})
+       {"accuracy", "calibration-study", "track-study", "pendulum-study", "ellipse-library", "bench-peers",
+        "distortion-figures"})
     EXPECT_NE(r.out.find(std::string("  ") + c + " "), std::string::npos) << c;
   const std::vector<std::string> names = test::overviewCommands(r.out);
-  EXPECT_GE(names.size(), 6u);
+  EXPECT_GE(names.size(), 7u);
   for (const std::string& name : names) {
     const CliRun help = studies(name + " --help");
     EXPECT_EQ(help.exit_code, 0) << name;
@@ -118,6 +119,46 @@ TEST(Studies, TrackStudyWritesTheTrackingRuns) {
     EXPECT_LT(largest, 20.0) << rows[i];
   }
   EXPECT_TRUE(fs::exists(dir / "tracking-critical-r.png"));
+}
+
+// distortion-figures: the table of the four lenses within the thesis's bounds for the
+// Taylor inverse (4.5: 1 px for pure radial and for its camera, 6 px for composite), and
+// with --plots the figures of 4.3-4.5 and 4.7-4.10 and the error chart.
+TEST(Studies, DistortionFiguresTableAndPlots) {
+  const fs::path dir = freshDir("studies_distortion");
+  const CliRun r = studies("distortion-figures --plots " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 6u) << r.out;
+  const std::pair<const char*, double> bounds[] = {
+      {"| pure radial | 4.3, 4.7 |", 1.0}, {"| pure tangential | 4.4, 4.8 |", 1.0},
+      {"| composite | 4.5, 4.9 |", 6.0}, {"| thesis camera | 4.10 |", 1.0}};
+  for (std::size_t i = 0; i < 4; ++i) {
+    ASSERT_EQ(rows[2 + i].rfind(bounds[i].first, 0), 0u) << rows[2 + i];
+    std::vector<std::string> cells;
+    std::istringstream row(rows[2 + i]);
+    for (std::string cell; std::getline(row, cell, '|');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 10u) << rows[2 + i];
+    const double displacement = std::stod(cells[7]), taylor = std::stod(cells[8]);
+    EXPECT_GT(displacement, 15.0) << rows[2 + i];  // the lenses move pixels by tens of px
+    EXPECT_GT(taylor, 0.0) << rows[2 + i];
+    EXPECT_LE(taylor, bounds[i].second) << rows[2 + i];
+  }
+  EXPECT_EQ(rows[5], "| thesis camera | 4.10 | -2.05e-07 | -1.21e-13 | 3.39e-06 | 2.56e-06 | 18.7 | 0.030 | 0.0022 |");
+  for (const char* name : {"radial-field", "tangential-field", "composite-field", "radial-correction",
+                           "tangential-correction", "composite-correction", "thesis-camera-correction"}) {
+    const cv::Mat figure = cv::imread((dir / (std::string("distortion-") + name + ".png")).string());
+    ASSERT_FALSE(figure.empty()) << name;
+    EXPECT_EQ(figure.size(), cv::Size(740, 620)) << name;
+    cv::Mat green;  // the distorted grid or points
+    cv::inRange(figure, cv::Scalar(0, 140, 0), cv::Scalar(40, 160, 40), green);
+    EXPECT_GT(cv::countNonZero(green), 500) << name;
+  }
+  EXPECT_EQ(cv::imread((dir / "distortion-taylor-error.png").string()).size(), cv::Size(900, 420));
+  // Without --plots: the table alone.
+  const CliRun table = studies("distortion-figures");
+  EXPECT_EQ(table.exit_code, 0);
+  EXPECT_EQ(table.out, r.out);
 }
 
 // The accuracy study's virtual part end to end on the smallest run: a complete report
