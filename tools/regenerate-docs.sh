@@ -53,6 +53,7 @@ generators=(
   "calibration|cheap|docs/calibration.md above its hand-written sections (calibration-study, about 15 s of CPU)"
   "blocks|cheap|the generated blocks of docs/*.md (each a few seconds at most)"
   "case-study-figures|cheap|docs/case-studies-*.png (two-targets --plot, pendulum --plots, 2 s)"
+  "distortion-figures|cheap|docs/distortion-*.png (distortion-figures --plots, 1 s)"
   "ellipse-figures|cheap|docs/ellipse-library-*.png, docs/ellipse-accumulator-*.png (ellipse-library --plots, detect --accumulators, 2 s)"
   "accuracy|slow|docs/accuracy.md (accuracy study, virtual and real scenes, a few minutes)"
   "screenshots|slow|docs/app-*.png (the application under xvfb-run, a minute; skipped without it)"
@@ -160,6 +161,11 @@ gen_case_study_figures() {
   cp "$tmp/two-targets-position2-distance.png" "$work/docs/case-studies-two-targets-position2-distance.png"
   timed "pendulum figure" run_doc_command "imagepro-cli pendulum --virtual --plots $tmp" >/dev/null
   cp "$tmp/pendulum-translations.png" "$work/docs/case-studies-pendulum-translations.png"
+}
+
+# The lens distortion's fields, their correction and the Taylor inverse's error (thesis 4.2, 4.5).
+gen_distortion_figures() {
+  timed "distortion figures" run_doc_command "imagepro-studies distortion-figures --plots docs" >/dev/null
 }
 
 # Bennett's accumulators and the library's per-image charts (thesis 2.6, appendix B).
