@@ -49,10 +49,12 @@ timing_lines='^Calibration time on the machine that wrote this: '
 
 # The generators: name, cost (cheap: seconds; slow: minutes or a display), what they write.
 generators=(
-  "tracking|cheap|docs/tracking.md, docs/tracking-sinusoid.png, docs/tracking-critical-r.png (track-study, under 1 s)"
+  "tracking|cheap|docs/tracking.md, docs/tracking-*.png (track-study: the critical r, the runs of figs. 3.7-3.12; under 1 s)"
   "calibration|cheap|docs/calibration.md above its hand-written sections (calibration-study, about 15 s of CPU)"
   "blocks|cheap|the generated blocks of docs/*.md (each a few seconds at most)"
   "case-study-figures|cheap|docs/case-studies-*.png (two-targets --plot, pendulum --plots, 2 s)"
+  "distortion-figures|cheap|docs/distortion-*.png (distortion-figures --plots, 1 s)"
+  "ellipse-figures|cheap|docs/ellipse-library-*.png, docs/ellipse-accumulator-*.png (ellipse-library --plots, detect --accumulators, 2 s)"
   "accuracy|slow|docs/accuracy.md (accuracy study, virtual and real scenes, a few minutes)"
   "screenshots|slow|docs/app-*.png (the application under xvfb-run, a minute; skipped without it)"
   "python|slow|docs/python.md, docs/python-pose-error.png (docs/python-walkthrough.py run as a notebook, 20 s; needs the Python module and python3-matplotlib)"
@@ -159,6 +161,29 @@ gen_case_study_figures() {
   cp "$tmp/two-targets-position2-distance.png" "$work/docs/case-studies-two-targets-position2-distance.png"
   timed "pendulum figure" run_doc_command "imagepro-cli pendulum --virtual --plots $tmp" >/dev/null
   cp "$tmp/pendulum-translations.png" "$work/docs/case-studies-pendulum-translations.png"
+}
+
+# The lens distortion's fields, their correction and the Taylor inverse's error (thesis 4.2, 4.5).
+gen_distortion_figures() {
+  timed "distortion figures" run_doc_command "imagepro-studies distortion-figures --plots docs" >/dev/null
+}
+
+# Bennett's accumulators and the library's per-image charts (thesis 2.6, appendix B).
+gen_ellipse_figures() {
+  local tmp="$scratch/ellipse" name
+  mkdir -p "$tmp"
+  timed "library charts" run_doc_command "imagepro-studies ellipse-library --plots docs" >/dev/null
+  timed "library images" run_doc_command "imagepro-cli library $tmp/library" >/dev/null
+  timed "accumulators" run_doc_command "imagepro-cli detect --method bennett --accumulators $tmp/acc \
+data/samples/sample03_tilted50.png data/samples/sample02_clutter.png $tmp/library/ellipse_69.png $tmp/library/rectangle_66.png" >/dev/null
+  cp "$tmp/acc/sample03_tilted50_accumulator.png" "$work/docs/ellipse-accumulator-sample03.png"
+  cp "$tmp/acc/sample02_clutter_accumulator.png" "$work/docs/ellipse-accumulator-sample02.png"
+  # One picture per shown path; these images show one each (test CliLibrary.DetectWritesBennettsAccumulators).
+  for pair in sample03_tilted50:sample03-path ellipse_69:library-ellipse rectangle_66:library-rectangle; do
+    set -- "$tmp/acc/${pair%%:*}"_path*.png
+    [ $# -eq 1 ] && [ -f "$1" ] || { log "accumulators: not one path picture for ${pair%%:*}"; return 1; }
+    cp "$1" "$work/docs/ellipse-accumulator-${pair#*:}.png"
+  done
 }
 
 # Runs a command that writes the figure PNG (docs/app-*.png); the test program's other

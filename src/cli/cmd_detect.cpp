@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "cli/bennett_accumulators.h"
 #include "cli/command.h"
 #include "cli/enum_options.h"
 #include "cli/image_inputs.h"
@@ -66,8 +67,27 @@ void drawOverlay(const Settings& s, Stage& st, Status status, cv::Mat& out) {
   }
 }
 
+void writePicture(const std::string& option, const std::filesystem::path& out, const cv::Mat& picture) {
+  bool written = false;
+  try {
+    written = cv::imwrite(out.string(), picture);
+  } catch (const cv::Exception&) {
+    written = false;
+  }
+  if (!written) throw InputError("--" + option + ": cannot write \"" + out.string() + "\"");
+}
+
+// The accumulator pictures of one image: <name>_accumulator.png and <name>_path<N>.png.
+void writeAccumulators(const Settings& s, Stage& st, const std::filesystem::path& dir, const std::string& name,
+                       BennettAccumulators& acc) {
+  drawBennettAccumulators(s.pipeline.ellipse, st.chain.paths, st.grey.size(), st.chain.ellipse_ws, acc);
+  writePicture("accumulators", dir / (name + "_accumulator.png"), acc.all);
+  for (const PathAccumulator& p : acc.shown)
+    writePicture("accumulators", dir / (name + "_path" + std::to_string(p.path) + ".png"), p.image);
+}
+
 int run(const Args& args) {
-  args.rejectUnknown({"format", "overlay", "method"});
+  args.rejectUnknown({"format", "overlay", "method", "accumulators"});
   const std::string format = args.valueOr("format", "csv");
   if (format != "text" && format != "csv") throw UsageError("--format: \"" + format + "\" is not text or csv");
   if (args.positionals().empty()) throw UsageError("no images given");
@@ -76,20 +96,17 @@ int run(const Args& args) {
   settings.pipeline.ellipse.method = enumOption(args, "method", settings.pipeline.ellipse.method);
   if (settings.pipeline.threshold.method == ThresholdMethod::None)
     throw InputError("the settings' threshold method \"none\" names no threshold");
-  std::optional<std::filesystem::path> overlayDir;
-  if (const auto dir = args.value("overlay")) {
-    std::error_code ec;
-    std::filesystem::create_directories(*dir, ec);
-    if (ec || !std::filesystem::is_directory(*dir)) throw InputError("--overlay: cannot create folder \"" + *dir + "\"");
-    overlayDir = *dir;
-  }
+  std::optional<std::filesystem::path> overlayDir, accumulatorDir;
+  if (const auto dir = args.value("overlay")) overlayDir = outputFolder("overlay", *dir);
+  if (const auto dir = args.value("accumulators")) accumulatorDir = outputFolder("accumulators", *dir);
   const EllipseOptions& eo = settings.pipeline.ellipse;
   const std::string method(enumName(eo.method));
   const bool csv = format == "csv";
   if (csv) std::printf("frame,status,cx,cy,a,b,angle_deg,fit_error,method,bennett_score,bennett_quality,bennett_symmetry_px\n");
   Stage st;
   cv::Mat overlay;
-  UniqueNames overlayNames;
+  BennettAccumulators accumulators;
+  UniqueNames overlayNames, accumulatorNames;
   for (const ImageInput& input : expandImageInputs(args.positionals())) {
     const std::string& file = input.path;
     std::string problem = input.error;
@@ -125,15 +142,12 @@ int run(const Args& args) {
     }
     if (overlayDir && !st.grey.empty()) {
       drawOverlay(settings, st, status, overlay);
-      const std::filesystem::path out = *overlayDir / (overlayNames.take(std::filesystem::path(file).stem().string()) + ".png");
-      bool written = false;
-      try {
-        written = cv::imwrite(out.string(), overlay);
-      } catch (const cv::Exception&) {
-        written = false;
-      }
-      if (!written) throw InputError("--overlay: cannot write \"" + out.string() + "\"");
+      writePicture("overlay", *overlayDir / (overlayNames.take(std::filesystem::path(file).stem().string()) + ".png"),
+                   overlay);
     }
+    if (accumulatorDir && !st.grey.empty())
+      writeAccumulators(settings, st, *accumulatorDir, accumulatorNames.take(std::filesystem::path(file).stem().string()),
+                        accumulators);
   }
   return 0;
 }
@@ -141,7 +155,8 @@ int run(const Args& args) {
 const CommandRegistration kRegistration{{
     "detect",
     "find the target's ellipse in each image (thesis 2.6)",
-    "usage: imagepro-cli detect [--config FILE] [--method M] [--format F] [--overlay DIR] IMAGES...\n\n"
+    "usage: imagepro-cli detect [--config FILE] [--method M] [--format F] [--overlay DIR]\n"
+    "                           [--accumulators DIR] IMAGES...\n\n"
     "Thresholds each image, detects its edges, groups them into connected paths and\n"
     "finds the target's ellipse (the settings' pipeline.threshold, edge_method,\n"
     "connectivity and ellipse). The target is the accepted ellipse that holds the\n"
@@ -159,6 +174,14 @@ const CommandRegistration kRegistration{{
     "                blue. <name> is the image's file name without extension, with\n"
     "                _2, _3 ... added when an earlier image of the run had the same\n"
     "                name (e.g. from another folder), so no overlay replaces another\n"
+    "  --accumulators DIR  write Bennett's accumulators (thesis figs. 2.17-2.23), with\n"
+    "                any --method, for every image read: DIR/<name>_accumulator.png,\n"
+    "                image-sized 8-bit grey, every path's accumulator over its box\n"
+    "                scaled to its own peak; and DIR/<name>_path<N>.png for each path N\n"
+    "                Bennett accepts (or, accepting none, the one of highest score):\n"
+    "                its accumulator enlarged, the peak's centre in red, the circle of\n"
+    "                half the peak's mean score in blue (the quality factor's radius)\n"
+    "                and the radius where symmetry vanishes, if inside, in orange\n"
     "cx, cy, a, b: centre and semi-axes in pixels; angle_deg: major axis from +u\n"
     "towards +v; fit_error: E_rel (eq. 2.42) or the mean Sampson distance in pixels,\n"
     "as the settings' ellipse.accept_rule; bennett_*: with --method bennett, the path's\n"

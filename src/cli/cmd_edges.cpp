@@ -60,12 +60,7 @@ int run(const Args& args) {
     throw InputError("the settings' threshold method \"none\" names no threshold");
 
   std::optional<std::filesystem::path> outDir;
-  if (const auto dir = args.value("out")) {
-    std::error_code ec;
-    std::filesystem::create_directories(*dir, ec);
-    if (ec || !std::filesystem::is_directory(*dir)) throw InputError("--out: cannot create folder \"" + *dir + "\"");
-    outDir = *dir;
-  }
+  if (const auto dir = args.value("out")) outDir = outputFolder("out", *dir);
 
   std::printf("frame,status,threshold,edge_pixels,paths,longest_path\n");
   cv::Mat grey, edgeImage, pathImage;

@@ -81,6 +81,13 @@ void Args::rejectUnknown(const std::vector<std::string>& known) const {
   }
 }
 
+std::filesystem::path outputFolder(const std::string& option, const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir)) throw InputError("--" + option + ": cannot create folder \"" + dir + "\"");
+  return dir;
+}
+
 Settings loadConfig(const Args& args) {
   Settings settings;
   if (const auto path = args.value("config")) {

@@ -2,6 +2,7 @@
 // The subcommands of imagepro-cli and imagepro-studies. Each lives in its own
 // cmd_<name>.cpp and registers itself with a static CommandRegistration, so adding a
 // command touches one file; both programs' main() is runCommands.
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <optional>
@@ -44,6 +45,10 @@ struct InputError : std::runtime_error {
 
 // Loads --config FILE over the defaults (or returns the defaults); throws InputError.
 Settings loadConfig(const Args& args);
+
+// The folder an option names for the files a command writes, created with its parents
+// when missing; InputError "--OPTION: cannot create folder ..." when it cannot be.
+std::filesystem::path outputFolder(const std::string& option, const std::string& dir);
 
 struct Command {
   std::string name;

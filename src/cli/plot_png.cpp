@@ -33,7 +33,7 @@ bool writePlotPng(const std::string& path, const Plot& plot, std::string& error,
   const int left = 70, right = 20, top = 52, bottom = 50;
   const cv::Rect area(left, top, size.width - left - right, size.height - top - bottom);
 
-  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;  // y1 may grow for the legend
   for (const auto& s : plot.series)
     for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
       if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
@@ -53,6 +53,44 @@ bool writePlotPng(const std::string& path, const Plot& plot, std::string& error,
                      area.y + area.height - static_cast<int>(std::lround((y - y0) / (y1 - y0) * area.height)));
   };
 
+  // The series in their colours, or all in white on a mask.
+  auto drawSeries = [&](cv::Mat& target, bool mask) {
+    for (const PlotSeries& s : plot.series) {
+      std::vector<cv::Point> pts;
+      for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
+        if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) pts.push_back(px(s.x[i], s.y[i]));
+      const cv::Scalar colour = mask ? cv::Scalar(255) : s.colour;
+      if (s.dots)
+        for (const cv::Point& p : pts) cv::circle(target, p, 3, colour, cv::FILLED, cv::LINE_AA);
+      else if (pts.size() >= 2)
+        cv::polylines(target, pts, false, colour, 1, cv::LINE_AA);
+    }
+  };
+
+  // The legend, on white, in the corner of the plot area where it covers none of the
+  // series (top right first); where every corner would, the y range grows at the top to
+  // leave a band for it.
+  const cv::Size legend(178, 18 * static_cast<int>(plot.series.size()) + 6);
+  const int inset = 4;
+  const cv::Point corners[4] = {{area.br().x - legend.width - inset, area.y + inset},
+                                {area.x + inset, area.y + inset},
+                                {area.br().x - legend.width - inset, area.br().y - legend.height - inset},
+                                {area.x + inset, area.br().y - legend.height - inset}};
+  cv::Rect box(corners[0], legend);
+  if (!plot.series.empty()) {
+    cv::Mat covered = cv::Mat::zeros(size, CV_8UC1);
+    drawSeries(covered, true);
+    bool free = false;
+    for (const cv::Point& corner : corners)
+      if (cv::countNonZero(covered(cv::Rect(corner, legend) & cv::Rect({0, 0}, size))) == 0) {
+        box = cv::Rect(corner, legend);
+        free = true;
+        break;
+      }
+    const int band = legend.height + 2 * inset;
+    if (!free && band < area.height / 2) y1 += (y1 - y0) * band / (area.height - band);
+  }
+
   const cv::Scalar grid(225, 225, 225), ink(40, 40, 40);
   const int font = cv::FONT_HERSHEY_SIMPLEX;
   const double xs = tickStep(x1 - x0, 8), ys = tickStep(y1 - y0, 6);
@@ -68,15 +106,19 @@ bool writePlotPng(const std::string& path, const Plot& plot, std::string& error,
   cv::putText(img, plot.title, {left, 20}, font, 0.55, ink, 1, cv::LINE_AA);
   cv::putText(img, plot.x_label, {area.x + area.width / 2 - 40, size.height - 12}, font, 0.45, ink, 1, cv::LINE_AA);
   cv::putText(img, plot.y_label, {8, top - 8}, font, 0.45, ink, 1, cv::LINE_AA);
+  drawSeries(img, false);
 
-  int legend_y = top + 18;
-  for (const auto& s : plot.series) {
-    std::vector<cv::Point> pts;
-    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
-      if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) pts.push_back(px(s.x[i], s.y[i]));
-    if (pts.size() >= 2) cv::polylines(img, pts, false, s.colour, 1, cv::LINE_AA);
-    cv::line(img, {area.x + area.width - 170, legend_y - 4}, {area.x + area.width - 145, legend_y - 4}, s.colour, 2);
-    cv::putText(img, s.name, {area.x + area.width - 140, legend_y}, font, 0.42, ink, 1, cv::LINE_AA);
+  if (!plot.series.empty()) {
+    cv::rectangle(img, box, cv::Scalar(255, 255, 255), cv::FILLED);
+    cv::rectangle(img, box, grid, 1);
+  }
+  int legend_y = box.y + 18;
+  for (const PlotSeries& s : plot.series) {
+    if (s.dots)
+      cv::circle(img, {box.x + 21, legend_y - 4}, 3, s.colour, cv::FILLED, cv::LINE_AA);
+    else
+      cv::line(img, {box.x + 8, legend_y - 4}, {box.x + 33, legend_y - 4}, s.colour, 2);
+    cv::putText(img, s.name, {box.x + 38, legend_y}, font, 0.42, ink, 1, cv::LINE_AA);
     legend_y += 18;
   }
   try {

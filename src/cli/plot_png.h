@@ -1,7 +1,7 @@
 #pragma once
 // Line charts as PNG files for the study commands (tracking, pendulum), drawn with
 // OpenCV so the CLI needs no GUI library: axes with ticks, a legend, one polyline
-// per series.
+// (or a dot per point) per series.
 #include <opencv2/core.hpp>
 
 #include <string>
@@ -13,6 +13,7 @@ struct PlotSeries {
   std::string name;
   cv::Scalar colour;  // BGR
   std::vector<double> x, y;
+  bool dots = false;  // a dot at each point instead of a line through them (values per item)
 };
 
 struct Plot {

@@ -2,12 +2,18 @@
 // as `imagepro-cli library DIR` then `imagepro-cli detect DIR` classify it (an image is an
 // ellipse when the ellipse stage reports Ok), by each ellipse method and accept rule, on
 // the binary library and on its grey, blurred and noisy versions. Prints the Markdown
-// tables of docs/ellipse-detection.md.
+// tables of docs/ellipse-detection.md; with --plots, the thesis's per-image figures of
+// the library (2.18, 2.20, 2.21, 2.23, 2.25 and B.1-B.6).
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "cli/command.h"
+#include "cli/plot_png.h"
+#include "core/ellipse/bennett.h"
+#include "core/ellipse/direct_fit.h"
 #include "core/ellipse/synthetic_library.h"
 #include "core/pipeline/stage_chain.h"
 #include "studies/report.h"
@@ -17,6 +23,7 @@ namespace {
 
 using cli::Args;
 using cli::CommandRegistration;
+using cli::InputError;
 using cli::UsageError;
 
 // What a detector made of one version of the library.
@@ -164,8 +171,115 @@ std::string versionsTable(const Settings& base) {
   return md;
 }
 
+// What the thesis plotted per library image, of the image's longest path (its outline).
+struct ImageMeasures {
+  const LibraryEntry* entry = nullptr;
+  double edge_pixels = NAN, score = NAN, quality = NAN, symmetry = NAN, share = NAN, relative_error = NAN;
+};
+
+std::vector<ImageMeasures> measureLibrary(const Settings& base) {
+  const Settings settings = settingsFor(base, Rule::Bennett, -1);
+  const EllipseOptions& o = settings.pipeline.ellipse;
+  const std::vector<cv::Mat> images = render(Version{"binary", false, 0.0, 0.0, -1});
+  StageChain chain;
+  FrameResult result;
+  BennettWorkspace ws;
+  std::vector<ImageMeasures> out;
+  const auto library = syntheticLibrary();
+  for (std::size_t i = 0; i < library.size(); ++i) {
+    ImageMeasures m;
+    m.entry = &library[i];
+    runStageChain(settings, images[i], {}, TargetsToReconstruct::Best, chain, result);
+    std::size_t longest = kNoPath;
+    for (std::size_t p = 0; p < chain.paths.pathCount(); ++p)
+      if (longest == kNoPath || chain.paths.path(p).size() > chain.paths.path(longest).size()) longest = p;
+    if (longest != kNoPath) {
+      const auto path = chain.paths.path(longest);
+      m.edge_pixels = static_cast<double>(path.size());
+      BennettResult r;  // the whole accumulation, as the rules read it
+      if (ok(bennettAccumulate(path, o.bennett_max_points, ws, r))) {
+        m.score = r.score;
+        m.quality = r.quality;
+        m.share = r.peak_fraction;
+        m.symmetry = r.symmetry_px / (r.border_distance_px + 1.0);
+      }
+      EllipseFit fit;
+      if (ok(fitEllipseDirect(path, fit))) m.relative_error = fit.relative_error;
+    }
+    out.push_back(m);
+  }
+  return out;
+}
+
+// One figure: a value per image, rectangles and ellipses each against their table's
+// numbers, and the rule's limits as horizontal lines.
+struct Figure {
+  const char* file;
+  const char* title;
+  const char* y_label;
+  double (*value)(const ImageMeasures&);
+  std::vector<std::pair<std::string, double>> limits = {};         // the settings' (green)
+  std::vector<std::pair<std::string, double>> thesis_limits = {};  // thesis 2.6.1's (grey)
+};
+
+void writeLibraryPlots(const std::vector<ImageMeasures>& measures, const std::vector<Figure>& figures,
+                       const std::filesystem::path& dir) {
+  const cv::Scalar rectangle_colour(0, 60, 220), ellipse_colour(200, 80, 0), limit_colour(0, 140, 0),
+      thesis_colour(150, 150, 150);
+  for (const Figure& f : figures) {
+    cli::Plot plot{f.title, "image number (table B.1 for rectangles, B.2 for ellipses)", f.y_label, {}};
+    cli::PlotSeries rectangles{"rectangles", rectangle_colour, {}, {}, true};
+    cli::PlotSeries ellipses{"ellipses", ellipse_colour, {}, {}, true};
+    double last = 0.0;
+    for (const ImageMeasures& m : measures) {
+      cli::PlotSeries& s = m.entry->shape == LibraryShape::Rectangle ? rectangles : ellipses;
+      s.x.push_back(m.entry->number);
+      s.y.push_back(f.value(m));
+      last = std::max(last, static_cast<double>(m.entry->number));
+    }
+    plot.series = {rectangles, ellipses};
+    for (const auto& [name, y] : f.limits) plot.series.push_back({name, limit_colour, {1.0, last}, {y, y}});
+    for (const auto& [name, y] : f.thesis_limits) plot.series.push_back({name, thesis_colour, {1.0, last}, {y, y}});
+    std::string error;
+    if (!cli::writePlotPng((dir / f.file).string(), plot, error)) throw InputError(error);
+    std::fprintf(stderr, "wrote %s\n", (dir / f.file).string().c_str());
+  }
+}
+
+void libraryPlots(const Settings& base, const std::filesystem::path& dir) {
+  const EllipseOptions& o = settingsFor(base, Rule::Bennett, -1).pipeline.ellipse;
+  const std::vector<Figure> figures = {
+      {"ellipse-library-edge-pixels.png", "Edge pixels of the outline (thesis fig. 2.18)", "edge pixels",
+       [](const ImageMeasures& m) { return m.edge_pixels; }, {}},
+      {"ellipse-library-symmetry.png", "Bennett: symmetry radius / distance to the accumulator's border (fig. 2.20)",
+       "symmetry (1: to the border)", [](const ImageMeasures& m) { return m.symmetry; }, {}},
+      {"ellipse-library-score.png", "Bennett: score of the absolute peak (fig. 2.21)", "score",
+       [](const ImageMeasures& m) { return m.score; }, {{"min score", o.bennett_min_score}},
+       {{"thesis: 550", 550.0}, {"thesis: 840", 840.0}}},
+      {"ellipse-library-quality.png", "Bennett: quality factor (fig. 2.23)", "quality factor",
+       [](const ImageMeasures& m) { return m.quality; }, {}, {{"thesis: 255", 255.0}, {"thesis: 375", 375.0}}},
+      {"ellipse-library-peak-share.png", "Bennett: share of the path's pairs at the peak", "peak share",
+       [](const ImageMeasures& m) { return m.share; }, {{"min share", o.bennett_min_peak_fraction}}},
+      {"ellipse-library-relative-error.png", "Direct fit: relative error E_rel (fig. 2.25), log scale", "log10 E_rel",
+       [](const ImageMeasures& m) { return std::log10(m.relative_error); },
+       {{"max E_rel", std::log10(o.max_relative_error)}}},
+      {"ellipse-library-length.png", "Rectangle width, ellipse major length (figs. B.1, B.2)", "length [px]",
+       [](const ImageMeasures& m) { return m.entry->length_px; }, {}},
+      {"ellipse-library-rotation.png", "Rotation (figs. B.3, B.4)", "rotation [deg]",
+       [](const ImageMeasures& m) { return m.entry->rotation_deg; }, {}},
+      {"ellipse-library-aspect.png", "Aspect ratio (figs. B.5, B.6)", "width / height, major / minor",
+       [](const ImageMeasures& m) { return m.entry->aspect; }, {}},
+  };
+  writeLibraryPlots(measureLibrary(base), figures, dir);
+}
+
 int run(const Args& args) {
-  args.rejectUnknown({"table"});
+  args.rejectUnknown({"table", "plots"});
+  if (const auto dir = args.value("plots")) {
+    if (args.has("table")) throw UsageError("--plots and --table: one or the other");
+    libraryPlots(cli::loadConfig(args), cli::outputFolder("plots", *dir));
+    return 0;
+  }
   const std::string table = args.valueOr("table", "methods");
   if (table != "methods" && table != "versions")
     throw UsageError("--table: \"" + table + "\" is not methods or versions");
@@ -178,7 +292,7 @@ int run(const Args& args) {
 const CommandRegistration kRegistration{{
     "ellipse-library",
     "classify the synthetic library of appendix B by each ellipse rule (docs/ellipse-detection.md)",
-    "usage: imagepro-studies ellipse-library [--table methods|versions] [--config FILE]\n\n"
+    "usage: imagepro-studies ellipse-library [--table methods|versions | --plots DIR] [--config FILE]\n\n"
     "Renders the 67 rectangles and 70 ellipses of thesis tables B.1 and B.2 and runs the\n"
     "detector's chain up to the ellipse stage on each, as imagepro-cli library and detect\n"
     "do, with one global threshold and no tilt check (shapes.json of the doc); an image is\n"
@@ -186,7 +300,16 @@ const CommandRegistration kRegistration{{
     "  --table methods    the binary library by the direct fit's two accept rules, Bennett\n"
     "                     and Bennett at the thesis's thresholds, beside the thesis (default)\n"
     "  --table versions   the binary, grey, blurred (threshold 125), noisy, and blurred and\n"
-    "                     noisy libraries by the direct fit's two rules and Bennett",
+    "                     noisy libraries by the direct fit's two rules and Bennett\n"
+    "  --plots DIR        instead of a table, the thesis's per-image figures of the binary\n"
+    "                     library as PNG charts in DIR, of each image's outline (its\n"
+    "                     longest path), rectangles and ellipses against their tables'\n"
+    "                     numbers: ellipse-library-edge-pixels.png (fig. 2.18), -symmetry\n"
+    "                     (2.20: Bennett's symmetry radius over the distance to the\n"
+    "                     accumulator's farthest border, 1 when symmetric to it), -score\n"
+    "                     (2.21), -quality (2.23), -peak-share, -relative-error (2.25,\n"
+    "                     log10 of E_rel), -length, -rotation, -aspect (B.1-B.6); the\n"
+    "                     settings' limits as lines. Bennett accumulates in full here.",
     {},
     run,
 }};

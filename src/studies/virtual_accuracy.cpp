@@ -252,16 +252,6 @@ void runCondition(const Settings& settings, Condition& c, int frames, std::uint6
   }
 }
 
-double largestDisplacementPx(const CameraModel& cam) {
-  double largest = 0.0;
-  for (int v = 0; v < cam.height; ++v)
-    for (int u = 0; u < cam.width; ++u) {
-      const Eigen::Vector2d x(u, v);
-      largest = std::max(largest, (undistortExact(cam, x) - x).norm());
-    }
-  return largest;
-}
-
 CameraModel scaledThesisCamera(double scale) {
   CameraModel cam;
   const Distortion& d = kThesisCameraDistortion;
@@ -283,7 +273,7 @@ std::string distortionSection() {
     const CameraModel cam = scaledThesisCamera(scale);
     const UndistortionError e = measureTaylorUndistortionError(cam);
     if (scale == 1.0) thesisError = e.max_px;
-    md += format("| thesis camera x %.1f | %.1f | %.3f | %.4f | %.1e |\n", scale, largestDisplacementPx(cam), e.max_px,
+    md += format("| thesis camera x %.1f | %.1f | %.3f | %.4f | %.1e |\n", scale, e.largest_displacement_px, e.max_px,
                  e.rms_px, e.max_residual_exact_px);
   }
   // The largest multiple of the thesis camera's coefficients whose Taylor error stays within
@@ -298,7 +288,7 @@ std::string distortionSection() {
   } else {
     within = beyond;
   }
-  const CameraModel limit = scaledThesisCamera(within);
+  const UndistortionError limit = measureTaylorUndistortionError(scaledThesisCamera(within));
   md += format(
       "\nThe thesis reports at most 1 px for its camera and at most %.0f px for exaggerated composite\n"
       "distortion. The Taylor inverse is exact to second order, so its error grows with at least the\n"
@@ -307,8 +297,8 @@ std::string distortionSection() {
       "corners, Taylor error %.2f px) and is exceeded beyond that; from about 3.5 times the model folds\n"
       "inside the image and has no inverse there at all. The reconstruction uses the Taylor inverse by\n"
       "default; the setting `exact_undistortion` selects the Newton inverse for stronger lenses.\n\n",
-      kThesisExaggeratedBoundPx, thesisError, kThesisExaggeratedBoundPx, within, largestDisplacementPx(limit),
-      measureTaylorUndistortionError(limit).max_px);
+      kThesisExaggeratedBoundPx, thesisError, kThesisExaggeratedBoundPx, within, limit.largest_displacement_px,
+      limit.max_px);
   return md;
 }
 

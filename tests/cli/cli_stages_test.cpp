@@ -591,5 +591,50 @@ TEST_F(CliLibrary, DetectFoldersListsAndOverlays) {
   EXPECT_NE(cli("detect --help").out.find("_2, _3"), std::string::npos);
 }
 
+// detect --accumulators: Bennett's accumulators as pictures (thesis figs. 2.17-2.23).
+// The image-sized picture peaks at the ellipse's centre and is black outside the
+// path's box; each shown path gets an enlarged picture with the centre marked in red.
+TEST_F(CliLibrary, DetectWritesBennettsAccumulators) {
+  ASSERT_EQ(run_.exit_code, 0) << run_.err;
+  const fs::path dir = freshDir("cli_stages_accumulators");
+  const std::string ellipse = (dir_ / "ellipse_21.png").string(), rectangle = (dir_ / "rectangle_14.png").string();
+  const CliRun r = cli("detect --accumulators " + (dir / "acc").string() + " " + ellipse + " " + rectangle);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto files = pngsIn(dir / "acc");
+  ASSERT_EQ(files.size(), 4u) << ::testing::PrintToString(files);
+  EXPECT_EQ(files[0], "ellipse_21_accumulator.png");
+  EXPECT_EQ(files[1].rfind("ellipse_21_path", 0), 0u) << files[1];
+  EXPECT_EQ(files[2], "rectangle_14_accumulator.png");
+  EXPECT_EQ(files[3].rfind("rectangle_14_path", 0), 0u) << files[3];  // none accepted: the highest score
+
+  const cv::Mat all = cv::imread((dir / "acc" / files[0]).string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(all.type(), CV_8UC1);
+  EXPECT_EQ(all.size(), cv::Size(640, 480));
+  double peak = 0.0;
+  cv::Point at;
+  cv::minMaxLoc(all, nullptr, &peak, nullptr, &at);
+  EXPECT_EQ(peak, 255.0);
+  EXPECT_NEAR(at.x, 319.5, 2.0);
+  EXPECT_NEAR(at.y, 239.5, 2.0);
+  EXPECT_EQ(all.at<std::uint8_t>(0, 0), 0);
+  EXPECT_EQ(all.at<std::uint8_t>(479, 639), 0);
+
+  const cv::Mat path = cv::imread((dir / "acc" / files[1]).string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(path.type(), CV_8UC3);
+  EXPECT_GE(std::max(path.cols, path.rows), 160);  // enlarged from the ellipse's box
+  cv::Mat red_pixels;
+  cv::inRange(path, cv::Scalar(0, 0, 255), cv::Scalar(0, 0, 255), red_pixels);
+  ASSERT_GT(cv::countNonZero(red_pixels), 0);
+  const cv::Rect marked = cv::boundingRect(red_pixels);
+  EXPECT_NEAR((marked.x + marked.br().x) / 2.0, path.cols / 2.0, path.cols * 0.05);
+  EXPECT_NEAR((marked.y + marked.br().y) / 2.0, path.rows / 2.0, path.rows * 0.05);
+
+  // A folder that cannot be made is the command line's error.
+  writeFile(dir / "file", "x");
+  const CliRun bad = cli("detect --accumulators " + (dir / "file" / "sub").string() + " " + ellipse);
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("--accumulators: cannot create folder"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace imagepro

@@ -34,7 +34,8 @@ TEST(Cli, OverviewListsTheCommands) {
     EXPECT_NE(r.out.find(c), std::string::npos) << c;
   // The studies are imagepro-studies' commands.
   for (const char* c :
-       {"accuracy", "calibration-study", "track-study", "pendulum-study", "ellipse-library", "bench-peers"})
+       {"accuracy", "calibration-study", "track-study", "pendulum-study", "ellipse-library", "bench-peers",
+        "distortion-figures"})
     EXPECT_EQ(r.out.find(std::string("  ") + c + " "), std::string::npos) << c;
 }
 

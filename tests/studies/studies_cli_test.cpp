@@ -4,6 +4,10 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
 #include <string>
 
 #include "core/common/atomic_file.h"
@@ -24,10 +28,11 @@ TEST(Studies, OverviewListsTheStudiesAndEachHasHelp) {
   const CliRun r = studies("--help");
   ASSERT_EQ(r.exit_code, 0);
   for (const char* c :
-       {"accuracy", "calibration-study", "track-study", "pendulum-study", "ellipse-library", "bench-peers"})
+       {"accuracy", "calibration-study", "track-study", "pendulum-study", "ellipse-library", "bench-peers",
+        "distortion-figures"})
     EXPECT_NE(r.out.find(std::string("  ") + c + " "), std::string::npos) << c;
   const std::vector<std::string> names = test::overviewCommands(r.out);
-  EXPECT_GE(names.size(), 6u);
+  EXPECT_GE(names.size(), 7u);
   for (const std::string& name : names) {
     const CliRun help = studies(name + " --help");
     EXPECT_EQ(help.exit_code, 0) << name;
@@ -58,6 +63,102 @@ TEST(Studies, EllipseLibraryTheDefaultRuleClassifiesTheBinaryLibrary) {
   ASSERT_EQ(rows.size(), 8u) << r.out;  // header, rule, two thesis rows, four of ours
   EXPECT_EQ(rows[4], "| direct fit, E_rel ≤ 0.02 + trace (default) | 70 of 70 | 0 of 67 | this implementation |");
   EXPECT_EQ(studies("ellipse-library --table grey").exit_code, 2);
+}
+
+// ellipse-library --plots writes the thesis's per-image figures of the library as
+// charts, and prints no table; --plots with --table is a usage error.
+TEST(Studies, EllipseLibraryPlotsTheLibraryPerImage) {
+  const fs::path dir = freshDir("studies_library_plots");
+  const CliRun r = studies("ellipse-library --plots " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  for (const char* name : {"edge-pixels", "symmetry", "score", "quality", "peak-share", "relative-error", "length",
+                           "rotation", "aspect"}) {
+    const cv::Mat chart = cv::imread((dir / (std::string("ellipse-library-") + name + ".png")).string());
+    ASSERT_FALSE(chart.empty()) << name;
+    EXPECT_EQ(chart.size(), cv::Size(900, 420)) << name;
+    // Both shapes' dots are drawn: the rectangles' red and the ellipses' blue.
+    cv::Mat red, blue;
+    cv::inRange(chart, cv::Scalar(0, 50, 200), cv::Scalar(20, 70, 230), red);
+    cv::inRange(chart, cv::Scalar(190, 70, 0), cv::Scalar(210, 90, 20), blue);
+    EXPECT_GT(cv::countNonZero(red), 100) << name;
+    EXPECT_GT(cv::countNonZero(blue), 100) << name;
+  }
+  EXPECT_EQ(studies("ellipse-library --plots " + dir.string() + " --table methods").exit_code, 2);
+}
+
+// track-study writes the tracking runs of thesis figs. 3.7-3.12 beside its report: one
+// chart each, listed in a table whose largest errors are those of a working tracker.
+TEST(Studies, TrackStudyWritesTheTrackingRuns) {
+  const fs::path dir = freshDir("studies_track");
+  const CliRun r = studies("track-study --frames 60 --out " + (dir / "tracking.md").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string md, e;
+  ASSERT_TRUE(readWholeFile((dir / "tracking.md").string(), md, e)) << e;
+  const std::size_t section = md.find("## The tracking runs (thesis figs. 3.7-3.12)");
+  ASSERT_NE(section, std::string::npos);
+  std::vector<std::string> rows;
+  for (const std::string& line : lines(md.substr(section)))
+    if (line.rfind("| 3.", 0) == 0) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 6u) << md.substr(section);
+  const char* files[] = {"tracking-sinusoid.png",     "tracking-sinusoid-3d.png",  "tracking-saw-tooth-2d.png",
+                         "tracking-saw-tooth-3d.png", "tracking-pendulum-2d.png", "tracking-pendulum-3d.png"};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_NE(rows[i].find(std::string("`") + files[i] + "`"), std::string::npos) << rows[i];
+    EXPECT_NE(md.find(std::string("](") + files[i] + ")"), std::string::npos) << files[i];
+    const cv::Mat chart = cv::imread((dir / files[i]).string());
+    ASSERT_FALSE(chart.empty()) << files[i];
+    EXPECT_EQ(chart.size(), cv::Size(900, 420));
+    // The largest error: the column before the plot's; the saw-tooth's turns cost most.
+    std::vector<std::string> cells;
+    std::istringstream row(rows[i]);
+    for (std::string cell; std::getline(row, cell, '|');) cells.push_back(cell);
+    ASSERT_GE(cells.size(), 7u) << rows[i];  // an empty cell before the first '|'
+    const double largest = std::stod(cells[5]);
+    EXPECT_GT(largest, 0.0) << rows[i];
+    EXPECT_LT(largest, 20.0) << rows[i];
+  }
+  EXPECT_TRUE(fs::exists(dir / "tracking-critical-r.png"));
+}
+
+// distortion-figures: the table of the four lenses within the thesis's bounds for the
+// Taylor inverse (4.5: 1 px for pure radial and for its camera, 6 px for composite), and
+// with --plots the figures of 4.3-4.5 and 4.7-4.10 and the error chart.
+TEST(Studies, DistortionFiguresTableAndPlots) {
+  const fs::path dir = freshDir("studies_distortion");
+  const CliRun r = studies("distortion-figures --plots " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 6u) << r.out;
+  const std::pair<const char*, double> bounds[] = {
+      {"| pure radial | 4.3, 4.7 |", 1.0}, {"| pure tangential | 4.4, 4.8 |", 1.0},
+      {"| composite | 4.5, 4.9 |", 6.0}, {"| thesis camera | 4.10 |", 1.0}};
+  for (std::size_t i = 0; i < 4; ++i) {
+    ASSERT_EQ(rows[2 + i].rfind(bounds[i].first, 0), 0u) << rows[2 + i];
+    std::vector<std::string> cells;
+    std::istringstream row(rows[2 + i]);
+    for (std::string cell; std::getline(row, cell, '|');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 10u) << rows[2 + i];
+    const double displacement = std::stod(cells[7]), taylor = std::stod(cells[8]);
+    EXPECT_GT(displacement, 15.0) << rows[2 + i];  // the lenses move pixels by tens of px
+    EXPECT_GT(taylor, 0.0) << rows[2 + i];
+    EXPECT_LE(taylor, bounds[i].second) << rows[2 + i];
+  }
+  EXPECT_EQ(rows[5], "| thesis camera | 4.10 | -2.05e-07 | -1.21e-13 | 3.39e-06 | 2.56e-06 | 18.7 | 0.030 | 0.0022 |");
+  for (const char* name : {"radial-field", "tangential-field", "composite-field", "radial-correction",
+                           "tangential-correction", "composite-correction", "thesis-camera-correction"}) {
+    const cv::Mat figure = cv::imread((dir / (std::string("distortion-") + name + ".png")).string());
+    ASSERT_FALSE(figure.empty()) << name;
+    EXPECT_EQ(figure.size(), cv::Size(740, 620)) << name;
+    cv::Mat green;  // the distorted grid or points
+    cv::inRange(figure, cv::Scalar(0, 140, 0), cv::Scalar(40, 160, 40), green);
+    EXPECT_GT(cv::countNonZero(green), 500) << name;
+  }
+  EXPECT_EQ(cv::imread((dir / "distortion-taylor-error.png").string()).size(), cv::Size(900, 420));
+  // Without --plots: the table alone.
+  const CliRun table = studies("distortion-figures");
+  EXPECT_EQ(table.exit_code, 0);
+  EXPECT_EQ(table.out, r.out);
 }
 
 // The accuracy study's virtual part end to end on the smallest run: a complete report

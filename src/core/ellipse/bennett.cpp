@@ -310,6 +310,7 @@ std::size_t accumulatePairs(std::span<const EdgePixel> path, std::size_t usable,
   // The box's cells and kSpareCounts more for the lanes past a ray's end (bennett_rays_pass.inc),
   // dropped when the counting is done.
   const std::size_t grid = static_cast<std::size_t>(box.w) * box.h;
+  ws.box = {box.x0, box.y0, box.w, box.h};
   ws.accumulator.assign(grid + kSpareCounts, 0u);
   std::uint32_t* acc = ws.accumulator.data();
   const std::size_t m = ws.sample.size();

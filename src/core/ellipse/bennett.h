@@ -58,7 +58,11 @@ struct BennettWorkspace {
     std::int32_t x, y, sx, sy;  // first cell and step, 16.16 fixed point
     std::int32_t count;         // cells
   };
-  std::vector<std::uint32_t> accumulator;  // votes per cell
+  std::vector<std::uint32_t> accumulator;  // votes per cell, row by row over `box`
+  // The image pixels the accumulator covers: cell (i, j) is pixel (x0 + i, y0 + j).
+  struct Box {
+    int x0 = 0, y0 = 0, width = 0, height = 0;
+  } box;
   std::vector<double> points;  // the sampled pixels: x, y, gx, gy and c of g . X = c, m each
   std::vector<Ray> rays;                   // the clipped rays of one pixel's pairs
   std::vector<std::int32_t> cells;         // the accumulator indices of one ray's cells

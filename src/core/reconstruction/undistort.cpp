@@ -97,9 +97,13 @@ UndistortionError measureTaylorUndistortionError(const CameraModel& cam) {
       const Eigen::Vector2d truth = undistortExact(cam, x);
       e.max_residual_exact_px =
           std::max(e.max_residual_exact_px, (distortPixel(cam, truth) - x).norm());
+      e.largest_displacement_px = std::max(e.largest_displacement_px, (truth - x).norm());
       const double err = (undistortTaylor(cam, x) - truth).norm();
       e.max_px = std::max(e.max_px, err);
       sum2 += err * err;
+      const auto ring = static_cast<std::size_t>(std::hypot(u - cam.u0(), v - cam.v0()));
+      if (ring >= e.max_px_by_radius.size()) e.max_px_by_radius.resize(ring + 1, 0.0);
+      e.max_px_by_radius[ring] = std::max(e.max_px_by_radius[ring], err);
     }
   }
   const double n = static_cast<double>(cam.width) * cam.height;

@@ -12,6 +12,7 @@
 // f and its partial derivatives are those of core/common/lens_model.h.
 #include <Eigen/Core>
 #include <span>
+#include <vector>
 
 #include "core/common/geometry.h"
 
@@ -32,6 +33,10 @@ struct UndistortionError {
   double max_px = 0.0;
   double rms_px = 0.0;
   double max_residual_exact_px = 0.0;  // |distort(undistortExact(x)) - x|, the exact inverse's own check
+  double largest_displacement_px = 0.0;  // |undistortExact(x) - x|: how far the lens moves a pixel
+  // The largest error among the pixels whose distance from the principal point lies in
+  // [i, i + 1) px (thesis 4.5: the error grows towards the image's corners).
+  std::vector<double> max_px_by_radius;
 };
 UndistortionError measureTaylorUndistortionError(const CameraModel& cam);
 

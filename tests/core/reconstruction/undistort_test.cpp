@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -148,6 +149,38 @@ TEST(Undistort, TaylorErrorOverTheWholeImageMeetsTheThesisBounds) {
   const Eigen::Vector2d corner(0, 0);
   EXPECT_LT((undistortTaylor(cam, corner) - undistortExact(cam, corner)).norm(),
             0.25 * (corner - undistortExact(cam, corner)).norm());
+}
+
+// The error's profile over the distance from the principal point and the lens's largest
+// displacement, against the same quantities computed pixel by pixel on a small image.
+TEST(Undistort, TaylorErrorByRadiusAndTheLargestDisplacement) {
+  CameraModel cam = exaggeratedCamera();
+  cam.width = 64;
+  cam.height = 48;
+  cam.principal_point_px = {20.0, 30.0};  // off centre: the rings are about it
+  cam.distortion = {200.0 * cam.distortion.k1, 0.0, 10.0 * cam.distortion.p1, 0.0};
+  const UndistortionError e = measureTaylorUndistortionError(cam);
+  std::vector<double> by_radius;
+  double largest = 0.0, worst = 0.0;
+  for (int v = 0; v < cam.height; ++v)
+    for (int u = 0; u < cam.width; ++u) {
+      const Eigen::Vector2d x(u, v), truth = undistortExact(cam, x);
+      largest = std::max(largest, (truth - x).norm());
+      const double err = (undistortTaylor(cam, x) - truth).norm();
+      worst = std::max(worst, err);
+      const auto ring = static_cast<std::size_t>(std::floor((x - Eigen::Vector2d(20.0, 30.0)).norm()));
+      if (ring >= by_radius.size()) by_radius.resize(ring + 1, 0.0);
+      by_radius[ring] = std::max(by_radius[ring], err);
+    }
+  EXPECT_GT(largest, 1.0);
+  EXPECT_DOUBLE_EQ(e.largest_displacement_px, largest);
+  ASSERT_EQ(e.max_px_by_radius.size(), by_radius.size());
+  // The farthest pixel, (63, 0), lies 52.4 px from the principal point.
+  EXPECT_EQ(e.max_px_by_radius.size(), 53u);
+  for (std::size_t r = 0; r < by_radius.size(); ++r) EXPECT_DOUBLE_EQ(e.max_px_by_radius[r], by_radius[r]) << r;
+  EXPECT_DOUBLE_EQ(*std::max_element(e.max_px_by_radius.begin(), e.max_px_by_radius.end()), e.max_px);
+  EXPECT_DOUBLE_EQ(e.max_px, worst);
+  EXPECT_LT(e.max_px_by_radius[2], e.max_px_by_radius[40]);  // the error grows outwards
 }
 
 }  // namespace
