@@ -156,7 +156,7 @@ struct ReconstructionOptions {
   // their normals lie more than ambiguity_min_deg apart, the frame is AmbiguousPose (a
   // tracked stream takes the one nearer the last pose).
   double ambiguity_ratio = 1.5;
-  double ambiguity_margin_px = 0.1;
+  double ambiguity_margin_px = 0.15;
   double ambiguity_min_deg = 5.0;
 };
 
