@@ -188,6 +188,8 @@ class CameraSettingsTest : public QObject {
   void controlWidgetsFollowTheDevice();
   void missingCameraFromTheDialogIsNamedWhenStarted();
   void commandLineChoosesTheCamera();
+  void captureCardInputAndStandard();
+  void dialogEditsEachSourcesCamera();
  private:
   std::unique_ptr<MainWindow> window_;
 };

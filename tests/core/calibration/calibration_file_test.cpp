@@ -21,8 +21,8 @@ std::string scratch(const std::string& name) {
 
 Settings calibrated() {
   Settings s;
-  s.camera.distortion = kThesisCameraDistortion;
-  s.camera.principal_point_px = {321.25, 238.5};
+  s.camera().distortion = kThesisCameraDistortion;
+  s.camera().principal_point_px = {321.25, 238.5};
   s.target.radius_mm = 40.0;  // not part of the file
   return s;
 }
@@ -38,11 +38,11 @@ TEST(CalibrationFile, HoldsOnlyTheCameraAndReadsBackAsSettings) {
   ASSERT_TRUE(writeCalibrationFile(path, calibrated(), error)) << error;
   Settings loaded;
   ASSERT_EQ(loadSettings(path, loaded, error), Status::Ok) << error;
-  EXPECT_EQ(loaded.camera.distortion.k1, kThesisCameraDistortion.k1);
-  EXPECT_EQ(loaded.camera.distortion.k2, kThesisCameraDistortion.k2);
-  EXPECT_EQ(loaded.camera.distortion.p1, kThesisCameraDistortion.p1);
-  EXPECT_EQ(loaded.camera.distortion.p2, kThesisCameraDistortion.p2);
-  EXPECT_EQ(loaded.camera.principal_point_px[0], 321.25);
+  EXPECT_EQ(loaded.camera().distortion.k1, kThesisCameraDistortion.k1);
+  EXPECT_EQ(loaded.camera().distortion.k2, kThesisCameraDistortion.k2);
+  EXPECT_EQ(loaded.camera().distortion.p1, kThesisCameraDistortion.p1);
+  EXPECT_EQ(loaded.camera().distortion.p2, kThesisCameraDistortion.p2);
+  EXPECT_EQ(loaded.camera().principal_point_px[0], 321.25);
   EXPECT_EQ(loaded.target.radius_mm, Settings{}.target.radius_mm);  // missing keys: defaults
 }
 
