@@ -36,6 +36,7 @@ class WorkerTest : public QObject {
  private slots:
   void latestFrameWins();
   void settingsApplyAtTheNextFrame();
+  void reconstructsWithTheRunningSourcesCamera();
 };
 
 // Virtual input in the window: start / stop and the appendix A keys.
