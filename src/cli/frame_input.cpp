@@ -131,7 +131,8 @@ std::unique_ptr<CameraSource> openCamera(const Args& args, const Settings& setti
   request.frame_rate_hz = args.number("fps", request.frame_rate_hz);
   if (args.has("fps") && !(request.frame_rate_hz > 0.0)) throw UsageError("--fps must be above 0");
   request.input = args.integer("input", request.input);
-  if (args.has("input") && request.input < 0) throw UsageError("--input must be 0 or more (imagepro-cli devices numbers them)");
+  if (args.has("input") && request.input < 0)
+    throw UsageError("--input must be 0 or more (imagepro-cli devices numbers them)");
   request.standard = standardOption(args, request.standard);
   auto camera = std::make_unique<CameraSource>(request);
   if (!ok(camera->start())) throw InputError(camera->lastError());

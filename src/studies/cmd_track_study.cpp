@@ -90,7 +90,7 @@ std::vector<Measurement> measure(const Settings& settings, int frames) {
     m.found = ok(r.status) && r.pose.has_value();
     m.box = cv::Rect2d(r.detected_region);
     if (r.pose) m.pose = *r.pose;
-    if (r.truth) m.true_x = projectedTargetBox(s.camera, s.target, *r.truth).x;
+    if (r.truth) m.true_x = projectedTargetBox(s.camera(), s.target, *r.truth).x;
     out.push_back(m);
   }
   return out;

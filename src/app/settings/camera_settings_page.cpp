@@ -368,8 +368,8 @@ void CameraSettingsPage::fillStandards() {
   int index = standard_->findData(static_cast<int>(o.standard));
   if (index < 0) {
     const std::string_view label = enumLabel(o.standard);
-    standard_->addItem(tr("%1 (not taken by this input)").arg(QString::fromUtf8(label.data(), static_cast<qsizetype>(label.size()))),
-                       static_cast<int>(o.standard));
+    const QString name = QString::fromUtf8(label.data(), static_cast<qsizetype>(label.size()));
+    standard_->addItem(tr("%1 (not taken by this input)").arg(name), static_cast<int>(o.standard));
     index = standard_->count() - 1;
   }
   standard_->setCurrentIndex(index);
