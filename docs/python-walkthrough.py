@@ -37,8 +37,11 @@
 # | `Pose(rx_deg, ry_deg, rz_deg, tx_mm, ty_mm, tz_mm)` | a pose (`docs/conventions.md`); `p.rotation_error_deg(q)`, `p.as_tuple()` |
 #
 # An image is a numpy `uint8` array, HxW grey or HxWx3 BGR (OpenCV's order, converted to
-# grey). Its size must be the settings' camera's (`camera.width`, `camera.height`), as in
-# the application. A `Result` has `status` ("ok" or the name of the first stage's failure),
+# grey). It is reconstructed with the camera model of the settings' source in use,
+# `settings.source` ("file", "camera" or "virtual", the default; not saved in the file),
+# each source having its own (`cameras.virtual.width`, `cameras.file.distortion.k1` ...),
+# and its size must be that camera's, as in the application. A `Result` has `status`
+# ("ok" or the name of the first stage's failure),
 # `message`, `ok`, `ellipse`, `spots` (the centre spot's and the offset spot's `(u, v)` in
 # image pixels as seen), `pose`, `candidates` (the two poses of an `AmbiguousPose`),
 # `targets`, `index`, `timestamp_s`, `search_region`, `detected_region`, `threshold` and
@@ -75,13 +78,13 @@ import numpy as np
 import imagepro
 
 settings = imagepro.Settings()
-print(settings["camera.width"], "x", settings["camera.height"], "pixels,",
+print(settings["cameras.virtual.width"], "x", settings["cameras.virtual.height"], "pixels,",
       "target radius", settings["target.radius_mm"], "mm")
 print(imagepro.Settings.key_info("pipeline.ellipse.method"))
 
 # %% [markdown]
-# Render the target at a pose through the settings' camera (its lens distortion
-# included), then reconstruct the pose from that image:
+# Render the target at a pose through the Virtual source's camera (`cameras.virtual`, its
+# lens distortion included), then reconstruct the pose from that image:
 
 # %%
 truth = imagepro.Pose(rx_deg=20, ry_deg=-30, rz_deg=45, tx_mm=30, ty_mm=-20, tz_mm=900)

@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
                                QStringLiteral("[file|folder...]"));
   parser.process(app);
 
-  using imagepro::app::SourceKind;
+  using imagepro::SourceKind;
   SourceKind kind = SourceKind::Virtual;
   if (parser.isSet(source) && !imagepro::app::parseSourceKind(parser.value(source), kind)) {
     std::fprintf(stderr, "imagepro: --source must be virtual, file or camera, not '%s'\n",

@@ -58,12 +58,12 @@ int runCameraBench(const Args& args) {
   if (frames < 10) throw UsageError("--frames must be at least 10");
   const std::string format = args.valueOr("format", "text");
   if (format != "text" && format != "json") throw UsageError("--format must be text or json");
-  const Settings settings = loadConfig(args);
+  const Settings settings = loadConfigForInput(args);  // --camera: the Camera source's model
   const auto camera = openCamera(args, settings);
   const CameraFormat agreed = camera->format();
-  if (agreed.width != settings.camera.width || agreed.height != settings.camera.height)
+  if (agreed.width != settings.camera().width || agreed.height != settings.camera().height)
     std::fprintf(stderr, "note: the frames are %dx%d, the camera model is for %dx%d: the times hold, the poses do not\n",
-                 agreed.width, agreed.height, settings.camera.width, settings.camera.height);
+                 agreed.width, agreed.height, settings.camera().width, settings.camera().height);
 
   Settings tracked_settings = settings;
   if (tracked_settings.pipeline.tracking.mode == TrackingMode::Off)

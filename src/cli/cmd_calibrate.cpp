@@ -10,6 +10,7 @@
 
 #include "cli/cmd_calibrate_intrinsics.h"
 #include "cli/command.h"
+#include "cli/enum_options.h"
 #include "cli/image_inputs.h"
 #include "core/calibration/calibrate.h"
 #include "core/calibration/calibration_file.h"
@@ -36,7 +37,7 @@ json resultJson(const CalibrationResult& r) {
 
 int run(const Args& args) {
   if (args.has("intrinsics")) return runIntrinsicCalibration(args);
-  args.rejectUnknown({"out", "format"});
+  args.rejectUnknown({"out", "format", "source"});
   const std::string format = args.valueOr("format", "text");
   if (format != "text" && format != "json") throw UsageError("--format: \"" + format + "\" is not text or json");
   const auto out = args.value("out");
@@ -48,6 +49,7 @@ int run(const Args& args) {
     throw UsageError("at most four images (thesis 4.6: one to four views of the pattern), " +
                      std::to_string(inputs.size()) + " given");
   Settings settings = loadConfig(args);
+  settings.source = enumOption(args, "source", SourceKind::File);
   const bool text = format == "text";
 
   // Unreadable files and images of another size than the camera's are reported and left
@@ -62,9 +64,9 @@ int run(const Args& args) {
       std::fprintf(stderr, "%s (skipped)\n", error.c_str());
       continue;
     }
-    if (grey.cols != settings.camera.width || grey.rows != settings.camera.height) {
+    if (grey.cols != settings.camera().width || grey.rows != settings.camera().height) {
       std::fprintf(stderr, "%s: %dx%d, but the settings' camera is %dx%d (skipped)\n", path.c_str(), grey.cols,
-                   grey.rows, settings.camera.width, settings.camera.height);
+                   grey.rows, settings.camera().width, settings.camera().height);
       continue;
     }
     images.push_back(grey);
@@ -109,7 +111,7 @@ int run(const Args& args) {
 
   if (text)
     std::printf("converged in %d iterations; RMS residual %.4f px\n", result.iterations, result.rms_residual_px);
-  settings.camera.distortion = result.distortion;
+  settings.camera().distortion = result.distortion;
   std::string error;
   if (!writeCalibrationFile(*out, settings, error)) throw InputError(error);
   if (text) std::printf("wrote %s\n", out->c_str());
@@ -119,7 +121,7 @@ int run(const Args& args) {
 const CommandRegistration kRegistration{{
     "calibrate",
     "lens distortion from the thesis's pattern (thesis 4.6), or --intrinsics from a dot grid",
-    "usage: imagepro-cli calibrate IMAGES... --out FILE [--config FILE] [--format text|json]\n\n"
+    "usage: imagepro-cli calibrate IMAGES... --out FILE [--config FILE] [--source S] [--format text|json]\n\n"
     "IMAGES are image files, folders (their images in natural order) or lists of paths\n"
     "(text files, one path a line), one to four images in all.\n"
     "Finds k1, k2, p1, p2 of the distortion model (thesis eq. 4.7) from images of the\n"
@@ -128,8 +130,11 @@ const CommandRegistration kRegistration{{
     "iterates until every parameter changes by less than pipeline.calibration.relative_change.\n"
     "An image without target or pattern is reported and skipped when the others suffice.\n"
     "The camera, target and pattern come from the settings (--config).\n"
-    "  --out FILE      write the settings' camera section with the distortion found (JSON,\n"
-    "                  atomically; an existing FILE is kept as FILE.bak)\n"
+    "  --out FILE      write the source's camera with the distortion found (JSON: the settings'\n"
+    "                  cameras section with that source only, atomically; an existing FILE is\n"
+    "                  kept as FILE.bak)\n"
+    "  --source S      the source whose camera took the images and gets the distortion: file\n"
+    "                  (default), camera or virtual\n"
     "  --format F      text (default): every iteration and the RMS residual in px;\n"
     "                  json: one object {status, k1, k2, p1, p2, iterations, rms_residual_px,\n"
     "                  coverage_radius_fraction}\n"

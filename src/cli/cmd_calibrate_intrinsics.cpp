@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/enum_options.h"
 #include "cli/image_inputs.h"
 #include "core/calibration/calibration_file.h"
 #include "core/calibration/intrinsics.h"
@@ -99,7 +100,7 @@ const char* const kIntrinsicCalibrationUsage =
     "usage: imagepro-cli calibrate --intrinsics --pattern thesis|symmetric-circles|asymmetric-circles\n"
     "         --columns C --rows R --spacing-mm S [--dot-diameter-mm D] IMAGES... --out FILE\n"
     "         [--format text|json] [--fit-k3] [--export-opencv FILE.yaml|FILE.json] [--coverage FILE.png]\n"
-    "         [--config FILE]\n\n"
+    "         [--config FILE] [--source file|camera|virtual]\n\n"
     "Full intrinsic calibration from 3 or more images (4-10 best) of a printed dot grid\n"
     "(imagepro-cli pattern): focal lengths fx, fy (d0 for the settings' pixel size, and the\n"
     "pixel aspect), principal point, k1, k2, p1, p2 (k3 with --fit-k3). OpenCV's conventions:\n"
@@ -110,8 +111,9 @@ const char* const kIntrinsicCalibrationUsage =
     "standard deviation, a coverage map of where the dots fell, and named warnings saying what\n"
     "to do (PoorCoverage, PoorBorderCoverage, NarrowViewAngles, OneTiltAxis, FewViews,\n"
     "HighReprojectionError, UncertainFocalLength).\n"
-    "  --out FILE            the settings' camera section with the result (atomically; an\n"
-    "                        existing FILE is kept as FILE.bak)\n"
+    "  --out FILE            the source's camera with the result (the settings' cameras section\n"
+    "                        with --source's only, default file; atomically; an existing FILE\n"
+    "                        is kept as FILE.bak)\n"
     "  --format json         one object {status, fx_px, fy_px, cx_px, cy_px, k1, k2, p1, p2,\n"
     "                        opencv_dist, rms_px, images_used, per_image, std_dev, coverage,\n"
     "                        warnings, ...}\n"
@@ -123,13 +125,14 @@ const char* const kIntrinsicCalibrationUsage =
 
 int runIntrinsicCalibration(const Args& args) {
   args.rejectUnknown({"intrinsics", "out", "format", "pattern", "columns", "rows", "spacing-mm", "dot-diameter-mm",
-                      "fit-k3", "export-opencv", "coverage", "config"});
+                      "fit-k3", "export-opencv", "coverage", "config", "source"});
   const std::string format = args.valueOr("format", "text");
   if (format != "text" && format != "json") throw UsageError("--format: \"" + format + "\" is not text or json");
   const auto out = args.value("out");
   if (!out) throw UsageError("--out FILE is required (the camera section of the settings is written there)");
   if (args.positionals().empty()) throw UsageError("no images given (3 or more images of the pattern)");
   Settings settings = loadConfig(args);
+  settings.source = enumOption(args, "source", SourceKind::File);
   const DotGridSpec spec = specFromArgs(args, settings);
   const bool text = format == "text";
 
@@ -154,7 +157,7 @@ int runIntrinsicCalibration(const Args& args) {
   const Status status = calibrateIntrinsics(images, spec, options, r);
   const CoverageMap map = coverageMap(r);
   const std::vector<CalibrationWarning> warnings = intrinsicsWarnings(r, map);
-  CameraModel camera = settings.camera;
+  CameraModel camera = settings.camera();
   if (ok(status)) applyIntrinsics(r, camera);
 
   if (text) {
@@ -210,7 +213,7 @@ int runIntrinsicCalibration(const Args& args) {
     if (!writeOpenCvCamera(*exportPath, openCvCameraOf(r), error)) throw InputError(error);
     if (text) std::printf("wrote %s\n", exportPath->c_str());
   }
-  settings.camera = camera;
+  settings.camera() = camera;
   if (!writeCalibrationFile(*out, settings, error)) throw InputError(error);
   if (text) std::printf("wrote %s\n", out->c_str());
   return 0;

@@ -1,10 +1,12 @@
 // imagepro-cli devices: the V4L2 cameras of this machine with the formats, frame
-// sizes and rates they offer and their controls; sets controls with --set.
+// sizes and rates they offer, a capture card's inputs and TV standards, and their
+// controls; sets controls with --set.
 #include <cstdio>
 #include <cstdlib>
 
 #include "cli/command.h"
 #include "core/camera/camera_info.h"
+#include "core/settings/enum_names.h"
 
 namespace imagepro::cli {
 namespace {
@@ -90,6 +92,20 @@ void printDevice(const DeviceInfo& info) {
         std::printf("      %dx%d: %s\n", s.width, s.height, ratesText(s.rates).c_str());
     }
   }
+  // A capture card's: printed only for a device that lists them.
+  if (!info.inputs.empty()) std::printf("  inputs (--input N):\n");
+  for (const VideoInput& in : info.inputs) {
+    std::string takes;
+    for (const TvStandard t : tvStandardsOffered(info, static_cast<int>(in.index)))
+      takes += (takes.empty() ? "" : ", ") + std::string(enumLabel(t));
+    std::printf("    %u  %s%s%s%s\n", in.index, in.name.c_str(), in.tuner ? " (tuner)" : "",
+                takes.empty() ? "" : (", takes " + takes).c_str(),
+                static_cast<int>(in.index) == info.current_input ? " (current)" : "");
+  }
+  if (!info.standards.empty()) std::printf("  TV standards of the current input (--standard PAL|NTSC|SECAM):\n");
+  for (const VideoStandard& st : info.standards)
+    std::printf("    %-10s %s frames/s%s\n", st.name.c_str(), rateText(st.frame_rate_hz).c_str(),
+                st.id != 0 && (st.id & info.current_standard) == st.id ? " (current)" : "");
   std::printf("  controls:\n");
   if (info.controls.empty()) std::printf("    none\n");
   for (const CameraControl& c : info.controls) printControl(c);
@@ -146,12 +162,14 @@ const CommandRegistration kRegistration{{
     "usage: imagepro-cli devices [DEVICE...] [--dir FOLDER]\n"
     "       imagepro-cli devices DEVICE --set NAME=VALUE[,NAME=VALUE...]\n\n"
     "Lists every /dev/video* node (or the DEVICEs given): the card, the pixel formats\n"
-    "with how ImagePro reads them, their frame sizes and rates, and the controls with\n"
+    "with how ImagePro reads them, their frame sizes and rates, a capture card's inputs\n"
+    "and TV standards (composite, S-Video: PAL, NTSC, SECAM), and the controls with\n"
     "their ranges and current values. Prints \"no video devices found\" when there are none.\n"
     "  --dir FOLDER             look for video* nodes in FOLDER instead of /dev\n"
     "  --set NAME=VALUE,...     set controls by the names listed (e.g. brightness=20);\n"
     "                           the camera keeps them for later captures\n"
-    "Capture from one with: imagepro-cli reconstruct --camera DEVICE [--size WxH] [--fps N]",
+    "Capture from one with: imagepro-cli reconstruct --camera DEVICE [--size WxH] [--fps N]\n"
+    "                                               [--input N] [--standard PAL|NTSC|SECAM]",
     {},
     run,
 }};

@@ -53,6 +53,7 @@ int run(const Args& args) {
   args.rejectUnknown({"out", "method", "connectivity"});
   if (args.positionals().empty()) throw UsageError("no images given");
   Settings settings = loadConfig(args);
+  settings.source = SourceKind::File;  // images: the File source's camera
   settings.pipeline.edge_method = enumOption(args, "method", settings.pipeline.edge_method);
   settings.pipeline.connectivity = enumOption(args, "connectivity", settings.pipeline.connectivity);
   settings.pipeline.level = ApplicationLevel::Connectivity;

@@ -22,7 +22,7 @@ int run(const Args& args) {
   if (!(epsilon > 0.0)) throw UsageError("--epsilon must be positive");
   if (maxIterations < 1) throw UsageError("--max-iterations must be at least 1");
 
-  const Settings settings = loadConfig(args);
+  const Settings settings = loadConfigForInput(args);
   auto source = openFrameInput(args, settings);
   D0Estimator estimator(settings, D0Options{focal, epsilon, maxIterations});
 

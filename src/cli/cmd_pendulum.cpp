@@ -218,7 +218,7 @@ int run(const Args& args) {
   args.rejectUnknown(known);
   const std::string format = args.valueOr("format", "text");
   if (format != "text" && format != "json") throw UsageError("--format: \"" + format + "\" is not text or json");
-  const Settings settings = loadConfig(args);
+  const Settings settings = loadConfigForInput(args);
   const bool virtual_input = args.has("virtual");
   for (const char* option : {"noise", "blur-exposure", "subframes", "interlaced", "still-positions", "still-span",
                              "still-frames", "runs"})

@@ -64,7 +64,7 @@ int run(const Args& args) {
   args.rejectUnknown(known);
   const std::string format = args.valueOr("format", "csv");
   if (format != "csv" && format != "json") throw UsageError("--format must be csv or json");
-  Settings settings = loadConfig(args);
+  Settings settings = loadConfigForInput(args);
   for (const std::string& key : kVirtualMotionOptions)
     if (args.has(key) && !args.has("virtual")) throw UsageError("--" + key + " goes with --virtual");
   applyVirtualMotionOptions(args, settings.virtual_scene);

@@ -87,7 +87,7 @@ int renderVirtual(const Args& args, Settings settings) {
     char file[64];
     std::snprintf(file, sizeof file, "frame_%05d.png", i);
     const std::string file_name = name ? *name + ".png" : std::string(file);
-    const bool in_view = targetInView(settings.camera, settings.target, *frame.truth);
+    const bool in_view = targetInView(settings.camera(), settings.target, *frame.truth);
     out.write(file_name, frame.image, poseCsvRow(file_name, Status::Ok, frame.truth, in_view ? "1" : "0"));
     const auto now = std::chrono::steady_clock::now();
     if (now - last_report > std::chrono::seconds(1)) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/command.h"
+#include "cli/enum_options.h"
 #include "core/calibration/opencv_camera_file.h"
 
 namespace imagepro::cli {
@@ -52,26 +53,31 @@ std::string methodsMarkdown() {
 }
 
 int run(const Args& args) {
-  args.rejectUnknown({"out", "methods-markdown", "import-opencv-camera", "export-opencv-camera"});
+  args.rejectUnknown({"out", "methods-markdown", "import-opencv-camera", "export-opencv-camera", "source"});
   if (args.has("methods-markdown")) {
     if (args.has("out") || args.has("config")) throw UsageError("--methods-markdown takes no other option");
     std::fputs(methodsMarkdown().c_str(), stdout);
     return 0;
   }
   Settings settings = loadConfig(args);
+  settings.source = enumOption(args, "source", SourceKind::File);
   std::string error;
   if (const auto in = args.value("import-opencv-camera")) {
     OpenCvCamera oc;
     if (!readOpenCvCamera(*in, oc, error)) throw InputError(error);
-    double fit = 0.0;
-    applyOpenCvCamera(oc, settings.camera, &fit);
-    std::fprintf(stderr, "camera from %s: %dx%d, d0 %.4f mm for %g mm pixels; its distortion in this project's model "
-                 "within %.4f px RMS\n",
-                 in->c_str(), oc.width, oc.height, settings.camera.image_plane_distance_mm,
-                 settings.camera.pixel_size_mm[0], fit);
+    // Into --source's camera, or every source's.
+    for (const SourceKind k : kSourceKinds) {
+      if (args.has("source") && k != settings.source) continue;
+      double fit = 0.0;
+      applyOpenCvCamera(oc, settings.camera(k), &fit);
+      std::fprintf(stderr, "%s camera from %s: %dx%d, d0 %.4f mm for %g mm pixels; its distortion in this project's "
+                   "model within %.4f px RMS\n",
+                   std::string(enumName(k)).c_str(), in->c_str(), oc.width, oc.height,
+                   settings.camera(k).image_plane_distance_mm, settings.camera(k).pixel_size_mm[0], fit);
+    }
   }
   if (const auto exportPath = args.value("export-opencv-camera")) {
-    if (!writeOpenCvCamera(*exportPath, openCvCameraOf(settings.camera), error)) throw InputError(error);
+    if (!writeOpenCvCamera(*exportPath, openCvCameraOf(settings.camera()), error)) throw InputError(error);
     std::fprintf(stderr, "wrote %s\n", exportPath->c_str());
     if (!args.has("out")) return 0;
   }
@@ -89,15 +95,17 @@ const CommandRegistration kRegistration{{
     "settings",
     "print or write the settings JSON (defaults, or --config checked and completed)",
     "usage: imagepro-cli settings [--config FILE] [--import-opencv-camera FILE] [--export-opencv-camera FILE]\n"
-    "                             [--out FILE]\n"
+    "                             [--source S] [--out FILE]\n"
     "       imagepro-cli settings --methods-markdown\n\n"
     "Prints the effective settings: the defaults, or FILE with every missing key\n"
     "filled in. A malformed FILE is reported with the key at fault.\n"
     "  --import-opencv-camera FILE  take the camera from OpenCV's camera file (YAML/JSON:\n"
     "                      camera_matrix, distortion_coefficients, image_width, image_height):\n"
     "                      d0 for the settings' pixel size, the distortion fitted to this\n"
-    "                      project's model\n"
-    "  --export-opencv-camera FILE  write the camera as OpenCV's camera file (JSON for .json)\n"
+    "                      project's model; into every source's camera, or --source's\n"
+    "  --export-opencv-camera FILE  write --source's camera as OpenCV's camera file (JSON for\n"
+    "                      .json)\n"
+    "  --source S          the camera of source S: file (default), camera or virtual\n"
     "  --out FILE          write to FILE (atomically) instead of printing\n"
     "  --methods-markdown  print instead the user manual's tables of every method and\n"
     "                      option list: for each value its name, its key in the settings\n"

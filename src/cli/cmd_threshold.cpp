@@ -40,6 +40,7 @@ int run(const Args& args) {
   if (format != "text" && format != "csv") throw UsageError("--format: \"" + format + "\" is not text or csv");
   if (args.positionals().empty()) throw UsageError("no images given");
   Settings settings = loadConfig(args);
+  settings.source = SourceKind::File;  // images: the File source's camera
   settings.pipeline.threshold = chosenOptions(args, settings);
   settings.pipeline.level = ApplicationLevel::Threshold;
 

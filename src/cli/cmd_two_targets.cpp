@@ -131,7 +131,7 @@ int run(const Args& args) {
   const std::string format = args.valueOr("format", "text");
   if (format != "text" && format != "json" && format != "markdown")
     throw UsageError("--format: \"" + format + "\" is not text, json or markdown");
-  const Settings settings = loadConfig(args);
+  const Settings settings = loadConfigForInput(args);
   TwoTargetObject object;
   object.spacing_mm = args.number("spacing", object.spacing_mm);
   object.angle_deg = args.number("angle", object.angle_deg);

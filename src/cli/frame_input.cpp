@@ -1,5 +1,6 @@
 #include "cli/frame_input.h"
 
+#include <cctype>
 #include <cstdio>
 #include <stdexcept>
 
@@ -7,6 +8,7 @@
 #include "core/camera/camera_settings.h"
 #include "core/camera/video_file.h"
 #include "core/common/image_limits.h"
+#include "core/settings/enum_names.h"
 #include "core/source/sources.h"
 
 namespace imagepro::cli {
@@ -87,12 +89,29 @@ void parseSize(const std::string& text, int& width, int& height) {
   throw UsageError("--size: \"" + text + "\" is not WIDTHxHEIGHT, e.g. 640x480");
 }
 
+// --size, --fps, --input and --standard belong to a camera.
+void rejectCameraOptions(const Args& args) {
+  for (const char* option : {"size", "fps", "input", "standard"})
+    if (args.has(option)) throw UsageError(std::string("--") + option + " goes with --camera");
+}
+
+// --standard's value in any case ("PAL", "pal").
+TvStandard standardOption(const Args& args, TvStandard fallback) {
+  const auto text = args.value("standard");
+  if (!text) return fallback;
+  std::string key = *text;
+  for (char& c : key) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const auto parsed = parseEnum<TvStandard>(key);
+  if (!parsed) throw UsageError("--standard: \"" + *text + "\" is not one of PAL, NTSC, SECAM, keep");
+  return *parsed;
+}
+
 std::unique_ptr<FrameSource> openCameraOrVideo(const Args& args, const Settings& settings) {
   std::unique_ptr<FrameSource> source;
   if (args.has("camera")) {
     source = std::make_unique<EndAfterCameraFailure>(openCamera(args, settings));
   } else {
-    if (args.has("size") || args.has("fps")) throw UsageError("--size and --fps go with --camera");
+    rejectCameraOptions(args);
     auto video = std::make_unique<VideoFileSource>(*args.value("video"), VideoPacing::AsFastAsPossible);
     if (!ok(video->open())) throw InputError(video->lastError());
     source = std::move(video);
@@ -111,12 +130,28 @@ std::unique_ptr<CameraSource> openCamera(const Args& args, const Settings& setti
   if (const auto size = args.value("size")) parseSize(*size, request.width, request.height);
   request.frame_rate_hz = args.number("fps", request.frame_rate_hz);
   if (args.has("fps") && !(request.frame_rate_hz > 0.0)) throw UsageError("--fps must be above 0");
+  request.input = args.integer("input", request.input);
+  if (args.has("input") && request.input < 0)
+    throw UsageError("--input must be 0 or more (imagepro-cli devices numbers them)");
+  request.standard = standardOption(args, request.standard);
   auto camera = std::make_unique<CameraSource>(request);
   if (!ok(camera->start())) throw InputError(camera->lastError());
   std::vector<std::string> problems;
   applyStoredControls(*camera, settings.camera_source.controls, problems);
   for (const std::string& p : problems) std::fprintf(stderr, "warning: %s\n", p.c_str());
   return camera;
+}
+
+SourceKind frameInputSource(const Args& args) {
+  if (args.has("camera")) return SourceKind::Camera;
+  if (args.has("video") || !args.positionals().empty()) return SourceKind::File;
+  return SourceKind::Virtual;
+}
+
+Settings loadConfigForInput(const Args& args) {
+  Settings settings = loadConfig(args);
+  settings.source = frameInputSource(args);
+  return settings;
 }
 
 std::string frameProblem(const std::string& frame, const std::string& error) {
@@ -127,7 +162,7 @@ std::unique_ptr<FrameSource> openFrameInput(const Args& args, const Settings& se
   const int inputs = args.has("virtual") + args.has("camera") + args.has("video") + !args.positionals().empty();
   if (inputs > 1) throw UsageError("give one input: image files, --virtual, --camera or --video");
   if (args.has("camera") || args.has("video")) return openCameraOrVideo(args, settings);
-  if (args.has("size") || args.has("fps")) throw UsageError("--size and --fps go with --camera");
+  rejectCameraOptions(args);
   if (args.has("virtual")) {
     if (!args.positionals().empty()) throw UsageError("give either --virtual or image files, not both");
     const int frames = args.integer("frames", 100);

@@ -167,14 +167,15 @@ class StreamEngine {
 py::array_t<std::uint8_t> render(const Pose& pose, const std::optional<Settings>& settings, bool pattern,
                                  std::uint64_t frame_seed) {
   const Settings& s = settingsOr(settings);
-  py::array_t<std::uint8_t> out({s.camera.height, s.camera.width});
+  const CameraModel& camera = s.camera(SourceKind::Virtual);
+  py::array_t<std::uint8_t> out({camera.height, camera.width});
   // Drawn straight into the array: the renderer keeps an output of the camera's size and type.
-  cv::Mat image(s.camera.height, s.camera.width, CV_8UC1, out.mutable_data());
+  cv::Mat image(camera.height, camera.width, CV_8UC1, out.mutable_data());
   const void* pixels = image.data;
   {
     py::gil_scoped_release unlocked;
-    if (pattern) renderPattern(s.camera, s.target, s.pattern, s.virtual_scene, pose, image, frame_seed);
-    else renderTarget(s.camera, s.target, s.virtual_scene, pose, image, frame_seed);
+    if (pattern) renderPattern(camera, s.target, s.pattern, s.virtual_scene, pose, image, frame_seed);
+    else renderTarget(camera, s.target, s.virtual_scene, pose, image, frame_seed);
   }
   return image.data == pixels ? out : numpyImage(image);
 }
@@ -302,17 +303,17 @@ tracking (the searched region follows the target; pipeline.tracking). process(im
 
   m.def("render", &render, py::arg("pose"), py::arg("settings") = py::none(), py::arg("pattern") = false,
         py::arg("frame_seed") = 0,
-        R"(The Virtual source's frame of the target at `pose` through the settings' camera (lens
+        R"(The Virtual source's frame of the target at `pose` through the settings' virtual camera (lens
 distortion included), as an HxW uint8 array; pattern=True draws the calibration pattern around it.
 The settings' "virtual" section sets the look (grey or binary, blur, noise, clutter); frame_seed varies the noise.)");
   m.def(
       "target_in_view",
       [](const Pose& pose, const std::optional<Settings>& s) {
         const Settings& settings = settingsOr(s);
-        return targetInView(settings.camera, settings.target, pose);
+        return targetInView(settings.camera(SourceKind::Virtual), settings.target, pose);
       },
       py::arg("pose"), py::arg("settings") = py::none(),
-      "Whether the whole target faces the camera inside the image at `pose`.");
+      "Whether the whole target faces the virtual camera inside the image at `pose`.");
 }
 
 }  // namespace imagepro::python

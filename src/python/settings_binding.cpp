@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "core/settings/enum_names.h"
 #include "core/settings/settings.h"
 #include "python/bindings.h"
 #include "python/errors.h"
@@ -25,7 +26,7 @@ const SettingKey& settingKey(const std::string& key) {
   return *k;
 }
 
-// Where `key` ("camera.principal_point_px[1]") lies in the settings document.
+// Where `key` ("cameras.file.principal_point_px[1]") lies in the settings document.
 json::json_pointer pointerTo(const std::string& key) {
   std::string pointer = "/";
   for (const char c : key) {
@@ -129,10 +130,10 @@ Settings fromJsonText(const std::string& text) {
 }  // namespace
 
 void bindSettings(py::module_& m) {
-  py::class_<Settings>(m, "Settings", R"(The settings of the pipeline: camera, target, virtual scene, every option.
+  py::class_<Settings>(m, "Settings", R"(The settings of the pipeline: each source's camera, target, virtual scene, every option.
 
 Values are read and written by the keys of the settings file (docs/conventions.md),
-e.g. s["pipeline.tracking.mode"] = "off" or s.get("camera.principal_point_px[0]").
+e.g. s["pipeline.tracking.mode"] = "off" or s.get("cameras.file.principal_point_px[0]").
 A value the settings file would refuse raises imagepro.InvalidSettings naming the key.)")
       .def(py::init<>(), "The defaults.")
       .def_static("defaults", [] { return Settings{}; }, "The defaults (the same as Settings()).")
@@ -172,6 +173,15 @@ A value the settings file would refuse raises imagepro.InvalidSettings naming th
           },
           "Every key, in the order of the file.")
       .def_static("key_info", &keyInfo, py::arg("key"), "A key's type, its range (numbers) or its choices.")
+      .def_property(
+          "source", [](const Settings& s) { return std::string(enumName(s.source)); },
+          [](Settings& s, const std::string& name) {
+            const auto kind = parseEnum<SourceKind>(name);
+            if (!kind) throw StatusError(Status::InvalidSettings, "source: \"" + name + "\" is not one of " + enumChoices<SourceKind>());
+            s.source = *kind;
+          },
+          R"(The source in use, "file", "camera" or "virtual" (default): its camera model, cameras.<source>,
+is the one reconstruct() and Engine use. Not saved in the file.)")
       .def("copy", [](const Settings& s) { return s; })
       .def("__copy__", [](const Settings& s) { return s; })
       .def("__deepcopy__", [](const Settings& s, const py::dict&) { return s; })

@@ -23,7 +23,7 @@ using namespace imagepro::cli;
 // The bench scenes with an AprilTag as wide as the disk drawn over the target before the
 // blur and noise, which are the target frames' own.
 std::vector<Frame> renderTagFrames(const Settings& scene, int frames) {
-  AprilTagPeer tags(scene.camera, 2.0 * scene.target.radius_mm);
+  AprilTagPeer tags(scene.camera(), 2.0 * scene.target.radius_mm);
   std::vector<Frame> out;
   out.reserve(static_cast<std::size_t>(frames));
   for (int i = 0; i < frames; ++i) {
@@ -38,14 +38,14 @@ std::vector<Frame> renderTagFrames(const Settings& scene, int frames) {
 BenchRun timeOpenCvPeer(const BenchSequence& sequence) {
   const Settings& s = sequence.settings;
   OpenCvPeerWorkspace ws;
-  auto detect = [&](const cv::Mat& grey, Pose& pose) { return opencvPeerPose(grey, s.camera, s.target, ws, pose); };
+  auto detect = [&](const cv::Mat& grey, Pose& pose) { return opencvPeerPose(grey, s.camera(), s.target, ws, pose); };
   Pose pose;
   for (const Frame& f : sequence.frames) detect(f.image, pose);  // grows the workspace
   return timeDetector(sequence.frames, detect);
 }
 
 BenchRun timeAprilTag(const Settings& scene, const std::vector<Frame>& tag_frames) {
-  AprilTagPeer peer(scene.camera, 2.0 * scene.target.radius_mm);
+  AprilTagPeer peer(scene.camera(), 2.0 * scene.target.radius_mm);
   return timeDetector(tag_frames, [&](const cv::Mat& grey, Pose& pose) { return peer.detect(grey, pose); });
 }
 
@@ -54,7 +54,7 @@ BenchRun timeAprilTag(const Settings& scene, const std::vector<Frame>& tag_frame
 BenchRun timeAruco(const BenchSequence& sequence) {
   const Settings& s = sequence.settings;
   const MarkerGeometry marker = markerLikeTarget(s.target, s.virtual_scene.card_size_mm);
-  const ScenePainter painter = markerPainter(s.camera, marker);
+  const ScenePainter painter = markerPainter(s.camera(), marker);
   std::vector<Frame> frames;
   frames.reserve(sequence.frames.size());
   for (const Frame& f : sequence.frames) {
@@ -65,7 +65,7 @@ BenchRun timeAruco(const BenchSequence& sequence) {
     frame.image = twin.image;
     frames.push_back(std::move(frame));
   }
-  auto detect = [&](const cv::Mat& grey, Pose& pose) { return estimateMarkerPose(s.camera, marker, grey, pose); };
+  auto detect = [&](const cv::Mat& grey, Pose& pose) { return estimateMarkerPose(s.camera(), marker, grey, pose); };
   Pose pose;
   for (std::size_t i = 0; i < std::min<std::size_t>(frames.size(), 10); ++i) detect(frames[i].image, pose);
   return timeDetector(frames, detect);

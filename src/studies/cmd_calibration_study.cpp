@@ -113,23 +113,23 @@ Trial runTrial(const Settings& settings, const std::string& name, const VirtualS
                std::uint64_t seedBase, bool refinePose, const std::array<Pose, 4>& views = recommendedCalibrationViews(kViewDistanceMm)) {
   Trial t;
   t.name = name;
-  CameraModel lens = settings.camera;
+  CameraModel lens = settings.camera();
   lens.distortion = kThesisCameraDistortion;
   std::vector<cv::Mat> images(views.size());
   for (size_t i = 0; i < views.size(); ++i)
     renderPattern(lens, settings.target, settings.pattern, scene, views[i], images[i], seedBase + i);
   Settings s = settings;
-  s.camera.distortion = {};
+  s.camera().distortion = {};
   s.pipeline.calibration.refine_pose = refinePose;
   const auto start = std::chrono::steady_clock::now();
   t.status = calibrateDistortion(s, images, t.ours);
   t.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  t.oursField = compareDistortionFields(s.camera, t.ours.distortion, kThesisCameraDistortion);
+  t.oursField = compareDistortionFields(s.camera(), t.ours.distortion, kThesisCameraDistortion);
   if (!ok(t.status) && t.status != Status::PoorCoverage) return t;
-  t.cv = runOpenCv(s.camera, t.ours);
+  t.cv = runOpenCv(s.camera(), t.ours);
   if (t.cv.ok)
-    t.cvField = compareDisplacementFields(s.camera, openCvField(t.cv.K, t.cv.dist),
-                                          displacementField(s.camera, kThesisCameraDistortion));
+    t.cvField = compareDisplacementFields(s.camera(), openCvField(t.cv.K, t.cv.dist),
+                                          displacementField(s.camera(), kThesisCameraDistortion));
   return t;
 }
 
@@ -160,7 +160,7 @@ struct ChainFrame {
 };
 
 std::vector<ChainFrame> chainFrames(const Settings& settings, int count, std::uint64_t seed) {
-  CameraModel lens = settings.camera;
+  CameraModel lens = settings.camera();
   lens.distortion = kThesisCameraDistortion;
   // The whole card in view: its corners are a disk of radius half the card's diagonal.
   TargetGeometry card = settings.target;
@@ -191,7 +191,7 @@ std::vector<ChainFrame> chainFrames(const Settings& settings, int count, std::ui
     f.pose = pose;
     f.tilt_deg = tiltDeg;
     renderTarget(lens, settings.target, scene, pose, f.image, frames.size() + 1);
-    renderTarget(settings.camera, settings.target, scene, pose, f.withoutLens, frames.size() + 1);
+    renderTarget(settings.camera(), settings.target, scene, pose, f.withoutLens, frames.size() + 1);
     frames.push_back(std::move(f));
   }
   return frames;
@@ -200,7 +200,7 @@ std::vector<ChainFrame> chainFrames(const Settings& settings, int count, std::ui
 ChainStats runChain(const Settings& settings, const Distortion& correction, bool correct,
                     const std::vector<ChainFrame>& frames, bool throughLens = true) {
   Settings s = settings;
-  s.camera.distortion = correction;
+  s.camera().distortion = correction;
   s.pipeline.reconstruction.distortion_correction = correct;
   s.pipeline.tracking.mode = TrackingMode::Off;
   Engine engine(s);
@@ -360,7 +360,7 @@ int run(const Args& args) {
     trials.push_back(runTrial(settings, format("noise 3, blur 0.8, seed %d", k + 2), realistic, base + 21 + 10 * k, true));
   const Trial thesis = runTrial(settings, "thesis step 7 (no pose correction)", realistic, base + 1, false);
 
-  const CameraModel& cam = settings.camera;
+  const CameraModel& cam = settings.camera();
   const FieldComparison whole = compareDistortionFields(cam, kThesisCameraDistortion, Distortion{});
 
   std::string md;

@@ -90,7 +90,7 @@ std::vector<Measurement> measure(const Settings& settings, int frames) {
     m.found = ok(r.status) && r.pose.has_value();
     m.box = cv::Rect2d(r.detected_region);
     if (r.pose) m.pose = *r.pose;
-    if (r.truth) m.true_x = projectedTargetBox(s.camera, s.target, *r.truth).x;
+    if (r.truth) m.true_x = projectedTargetBox(s.camera(), s.target, *r.truth).x;
     out.push_back(m);
   }
   return out;
@@ -102,9 +102,9 @@ Stats replay(const std::vector<Measurement>& ms, const Settings& settings, const
              std::vector<double>* estimated_x0 = nullptr) {
   RegionTracker tracker;
   std::vector<double> errors;
-  const cv::Size image(settings.camera.width, settings.camera.height);
+  const cv::Size image(settings.camera().width, settings.camera().height);
   for (const Measurement& m : ms) {
-    const auto region = tracker.estimate(options, settings.camera, settings.target, m.t, image);
+    const auto region = tracker.estimate(options, settings.camera(), settings.target, m.t, image);
     const bool predicted = region.has_value() && tracker.lastPredictedBox().has_value();
     if (predicted && m.found) {
       const cv::Rect2d& p = *tracker.lastPredictedBox();
@@ -204,7 +204,7 @@ DefaultCheck checkDefault(const Settings& settings, int frames) {
     if (ok(r.status)) ++c.found;
     if (r.search_region.area() >= r.image_size.area()) continue;
     ++c.tracked;
-    const cv::Rect2d box = projectedTargetBox(settings.camera, settings.target, *r.truth);
+    const cv::Rect2d box = projectedTargetBox(settings.camera(), settings.target, *r.truth);
     if ((box & cv::Rect2d(r.search_region)).area() >= box.area() - 1e-6) ++c.inside;
     c.mean_area += static_cast<double>(r.search_region.area()) / r.image_size.area();
   }

@@ -52,7 +52,7 @@ class Detectors {
 
   Status marker(const cv::Mat& image, std::optional<Pose>& pose) {
     Pose found;
-    const Status s = estimateMarkerPose(settings_.camera, marker_, image, found);
+    const Status s = estimateMarkerPose(settings_.camera(), marker_, image, found);
     pose = ok(s) ? std::optional<Pose>(found) : std::nullopt;
     return s;
   }
@@ -154,7 +154,7 @@ bool runRealSceneStudy(const Settings& settings, const RealSceneStudyOptions& op
   out.photos = photos.size();
   const RealScenes scenes(settings, std::move(photos));
   Detectors detectors(settings);
-  const ScenePainter marker = markerPainter(settings.camera, detectors.markerGeometry());
+  const ScenePainter marker = markerPainter(settings.camera(), detectors.markerGeometry());
   if (!runStills(scenes, options, detectors, marker, out, error)) return false;
   for (int k = 0; k < options.videos; ++k)
     if (!runVideo(scenes, options, k, detectors, marker, out, error)) return false;
@@ -244,7 +244,7 @@ std::string missedLine(const std::vector<std::string>& missed) {
 }  // namespace
 
 std::string realSceneSection(const Settings& settings, const RealSceneStudyOptions& o, const RealSceneStudy& study) {
-  const CameraModel& cam = settings.camera;
+  const CameraModel& cam = settings.camera();
   std::string md = "## Real scenes: the target over photographs\n\n";
   md += format(
       "%d stills, %d negatives and %d videos of %d frames (the target hidden for %d frames in the middle of each), "

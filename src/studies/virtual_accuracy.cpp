@@ -170,7 +170,7 @@ double normalErrorDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 
 void runCondition(const Settings& settings, Condition& c, int frames, std::uint64_t seed) {
   Settings s = settings;
-  s.camera.distortion = c.distortion;
+  s.camera().distortion = c.distortion;
   Settings detection = s;
   detection.pipeline.level = ApplicationLevel::Ellipse;
   detection.pipeline.tracking.mode = TrackingMode::Off;
@@ -184,10 +184,10 @@ void runCondition(const Settings& settings, Condition& c, int frames, std::uint6
   cv::Mat markerFrame;
   c.outcomes.assign(c.methods.size(), {});
   for (int i = 0; i < frames; ++i) {
-    const StudyFrame f = sampler.next(s.camera, 0.5 * std::max(s.virtual_scene.card_size_mm, marker.card_mm));
+    const StudyFrame f = sampler.next(s.camera(), 0.5 * std::max(s.virtual_scene.card_size_mm, marker.card_mm));
     const Eigen::Matrix3d Rtrue = rotationMatrix(f.pose);
     const Eigen::Vector3d Ttrue = translation(f.pose);
-    renderTarget(s.camera, s.target, f.scene, f.pose, frame.image, static_cast<std::uint64_t>(i));
+    renderTarget(s.camera(), s.target, f.scene, f.pose, frame.image, static_cast<std::uint64_t>(i));
     frame.index = i;
     engine.process(frame, detected);
     const bool found = ok(detected.status) && !detected.targets.empty();
@@ -197,8 +197,8 @@ void runCondition(const Settings& settings, Condition& c, int frames, std::uint6
     // The marker at the same pose, behind the same effects.
     VirtualSceneOptions plain = f.scene;
     plain.noise_sigma = plain.blur_sigma_px = plain.illumination_gradient = 0.0;
-    renderTarget(s.camera, s.target, plain, f.pose, markerFrame);
-    paintMarkerCard(s.camera, marker, f.scene, f.pose, markerFrame);
+    renderTarget(s.camera(), s.target, plain, f.pose, markerFrame);
+    paintMarkerCard(s.camera(), marker, f.scene, f.pose, markerFrame);
     applySceneEffects(f.scene, static_cast<std::uint64_t>(i), markerFrame);
 
     for (std::size_t m = 0; m < c.methods.size(); ++m) {
@@ -207,7 +207,7 @@ void runCondition(const Settings& settings, Condition& c, int frames, std::uint6
       o.tilt_deg = f.tilt_deg;
       Pose est;
       if (method.marker) {
-        o.ok = ok(estimateMarkerPose(s.camera, marker, markerFrame, est));
+        o.ok = ok(estimateMarkerPose(s.camera(), marker, markerFrame, est));
       } else if (found) {
         ReconstructionConfig config = reconstructionConfig(s);
         config.options.contour_mode = method.mode;
@@ -221,22 +221,22 @@ void runCondition(const Settings& settings, Condition& c, int frames, std::uint6
           no.tilt_deg = f.tilt_deg;
           no.eigen_deg = normalErrorDeg(rotationMatrix(est).col(2), Rtrue.col(2));
           Eigen::Vector3d polar;
-          no.polar_raw_deg = ok(normalFromPolarLine(s.camera, result.conic, result.centre_spot_ideal, polar))
+          no.polar_raw_deg = ok(normalFromPolarLine(s.camera(), result.conic, result.centre_spot_ideal, polar))
                                  ? normalErrorDeg(polar, Rtrue.col(2))
                                  : 180.0;
           // The centre spot's perspective bias at the estimated pose: the centre of its
           // image conic minus the image of its centre (what poseFromEllipse removes from
           // the offset spot).
           Eigen::Vector2d bias;
-          if (!spotCentroidOffset(s.camera, rotationMatrix(est), translation(est), 0.0, 0.0,
+          if (!spotCentroidOffset(s.camera(), rotationMatrix(est), translation(est), 0.0, 0.0,
                                   s.target.spot_radius_mm, bias))
             bias.setZero();
           no.polar_deg =
-              ok(normalFromPolarLine(s.camera, result.conic, result.centre_spot_ideal - bias, polar))
+              ok(normalFromPolarLine(s.camera(), result.conic, result.centre_spot_ideal - bias, polar))
                   ? normalErrorDeg(polar, Rtrue.col(2))
                   : 180.0;
           Pose weighed;
-          no.weighed_deg = ok(poseFromEllipse(s.camera, s.target, result.conic, result.centre_spot_ideal,
+          no.weighed_deg = ok(poseFromEllipse(s.camera(), s.target, result.conic, result.centre_spot_ideal,
                                               result.offset_spot_ideal, weighed, true))
                                ? normalErrorDeg(rotationMatrix(weighed).col(2), Rtrue.col(2))
                                : 180.0;
@@ -336,7 +336,7 @@ std::string virtualAccuracyReport(const Settings& settings, int frames, std::uin
       "blur sigma 0-%.1f px, illumination gradient up to +-%.0f %% across the image, %d clutter bars and "
       "rectangles. %d frames with and %d without lens distortion.\n\n",
       settings.target.radius_mm, settings.target.spot_radius_mm, settings.target.spot_offset_mm,
-      settings.virtual_scene.card_size_mm, settings.camera.image_plane_distance_mm, settings.camera.pixel_size_mm[0],
+      settings.virtual_scene.card_size_mm, settings.camera().image_plane_distance_mm, settings.camera().pixel_size_mm[0],
       kMinDistanceMm, kMaxDistanceMm, kMaxTiltDeg, kMaxNoiseSigma, kMaxBlurSigmaPx, 100 * kMaxGradient, kClutter,
       frames, frames);
   md += "Each frame goes through the pipeline's detection (whole frame, no tracking, the default settings), then "

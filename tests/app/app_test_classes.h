@@ -36,6 +36,7 @@ class WorkerTest : public QObject {
  private slots:
   void latestFrameWins();
   void settingsApplyAtTheNextFrame();
+  void reconstructsWithTheRunningSourcesCamera();
 };
 
 // Virtual input in the window: start / stop and the appendix A keys.
@@ -188,6 +189,8 @@ class CameraSettingsTest : public QObject {
   void controlWidgetsFollowTheDevice();
   void missingCameraFromTheDialogIsNamedWhenStarted();
   void commandLineChoosesTheCamera();
+  void captureCardInputAndStandard();
+  void dialogEditsEachSourcesCamera();
  private:
   std::unique_ptr<MainWindow> window_;
 };

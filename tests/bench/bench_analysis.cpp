@@ -12,11 +12,11 @@ namespace {
 
 void BM_ReconstructTwoTargets(benchmark::State& state) {
   Settings s;
-  s.camera.distortion = kThesisCameraDistortion;
+  s.camera().distortion = kThesisCameraDistortion;
   s.virtual_scene.noise_sigma = 2.0;
   cv::Mat image;
   TwoTargetRenderWorkspace render_ws;
-  renderTwoTargets(s.camera, s.target, s.virtual_scene, {}, twoTargetStudyPosition(static_cast<int>(state.range(0))),
+  renderTwoTargets(s.camera(), s.target, s.virtual_scene, {}, twoTargetStudyPosition(static_cast<int>(state.range(0))),
                    image, 1, render_ws);
   MultiTargetWorkspace ws;
   MultiTargetResult result;

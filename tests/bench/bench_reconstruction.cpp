@@ -25,7 +25,7 @@ struct Scene {
   Ellipse detected;
 
   Scene(double distanceMm, ContourMode mode) {
-    settings.camera.distortion = kThesisCameraDistortion;
+    settings.camera().distortion = kThesisCameraDistortion;
     settings.virtual_scene.noise_sigma = 2.0;
     settings.virtual_scene.blur_sigma_px = 0.6;
     settings.virtual_scene.clutter = 6;
@@ -35,14 +35,14 @@ struct Scene {
                                Eigen::AngleAxisd(20 * kDeg, Eigen::Vector3d::UnitZ()))
                                   .toRotationMatrix();
     pose = poseFromRt(R, Eigen::Vector3d(30, -20, distanceMm));
-    renderTarget(settings.camera, settings.target, settings.virtual_scene, pose, image, 1);
+    renderTarget(settings.camera(), settings.target, settings.virtual_scene, pose, image, 1);
     // The rim as the detection stage reports it (the seen rim's best ellipse).
     std::vector<Eigen::Vector2d> rim;
     const Eigen::Vector3d T = translation(pose);
     for (int i = 0; i < 180; ++i) {
       const double a = 2 * M_PI * i / 180;
-      rim.push_back(distortPixel(settings.camera,
-                                 projectIdeal(settings.camera, R * Eigen::Vector3d(50 * std::cos(a), 50 * std::sin(a), 0) + T)));
+      rim.push_back(distortPixel(settings.camera(),
+                                 projectIdeal(settings.camera(), R * Eigen::Vector3d(50 * std::cos(a), 50 * std::sin(a), 0) + T)));
     }
     EllipseFit fit;
     fitEllipseDirect(std::span<const Eigen::Vector2d>(rim), fit);
@@ -86,7 +86,7 @@ void BM_PoseFromEllipse(benchmark::State& state) {
   reconstructTarget(reconstructionConfig(scene.settings), scene.image, scene.detected, 128, ws, result);
   Pose pose;
   for (auto _ : state) {
-    poseFromEllipse(scene.settings.camera, scene.settings.target, result.conic, result.centre_spot_ideal,
+    poseFromEllipse(scene.settings.camera(), scene.settings.target, result.conic, result.centre_spot_ideal,
                     result.offset_spot_ideal, pose, state.range(0) != 0);
     benchmark::DoNotOptimize(pose);
   }
@@ -119,7 +119,7 @@ void BM_RefinePose(benchmark::State& state) {
   reconstructTarget(reconstructionConfig(scene.settings), scene.image, scene.detected, 128, ws, result);
   PoseRefinement refined;
   for (auto _ : state) {
-    const Status s = refinePose(scene.settings.camera, scene.settings.target, result.contour_ideal,
+    const Status s = refinePose(scene.settings.camera(), scene.settings.target, result.contour_ideal,
                                 result.centre_spot_ideal, result.offset_spot_ideal, result.pose, refined);
     if (!ok(s)) state.SkipWithError("refinement failed");
     benchmark::DoNotOptimize(refined.pose);

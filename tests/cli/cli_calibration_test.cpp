@@ -119,15 +119,17 @@ TEST_F(CliCalibrate, TextShowsEveryIterationAndTheFinalResidual) {
   EXPECT_TRUE(wrote);
   EXPECT_EQ(imagesReported, 4);
 
-  // The file is the settings' camera section with the distortion found.
+  // The file is the settings' cameras section with the File source's (the images') alone,
+  // with the distortion found.
   const json file = json::parse(readText(out));
   ASSERT_EQ(file.size(), 1u);
-  const json& d = file.at("camera").at("distortion");
+  ASSERT_EQ(file.at("cameras").size(), 1u);
+  const json& d = file.at("cameras").at("file").at("distortion");
   EXPECT_NEAR(d.at("k1").get<double>(), kK1, 0.01 * std::abs(kK1));
   EXPECT_NEAR(d.at("k2").get<double>(), kK2, 0.05 * std::abs(kK2));
   EXPECT_NEAR(d.at("p1").get<double>(), kP1, 0.02 * std::abs(kP1));
   EXPECT_NEAR(d.at("p2").get<double>(), kP2, 0.02 * std::abs(kP2));
-  EXPECT_EQ(file.at("camera").at("width").get<int>(), 640);
+  EXPECT_EQ(file.at("cameras").at("file").at("width").get<int>(), 640);
   // It is a settings file: --config takes it.
   EXPECT_EQ(cli("settings --config " + out.string()).exit_code, 0);
 }
@@ -151,7 +153,7 @@ TEST_F(CliCalibrate, JsonIsOneObjectWithTheParameters) {
   EXPECT_GE(j.at("coverage_radius_fraction").get<double>(), 0.6);
   // The same parameters as the file written.
   const json file = json::parse(readText(dir_ / "camera.json"));
-  EXPECT_EQ(file.at("camera").at("distortion").at("k1").get<double>(), j.at("k1").get<double>());
+  EXPECT_EQ(file.at("cameras").at("file").at("distortion").at("k1").get<double>(), j.at("k1").get<double>());
 }
 
 TEST_F(CliCalibrate, BadImagesAreReportedOnceAndSkipped) {

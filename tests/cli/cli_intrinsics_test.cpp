@@ -58,7 +58,7 @@ TEST(CliIntrinsics, CalibratesAnAsymmetricGridAndWritesEveryFile) {
   EXPECT_TRUE(std::filesystem::exists(out.string() + ".bak"));
   // The camera section, OpenCV's file and the coverage map.
   const auto settings = nlohmann::json::parse(test::readText(out));
-  EXPECT_NEAR(settings["camera"]["principal_point_px"][0].get<double>(), j["cx_px"].get<double>(), 1e-9);
+  EXPECT_NEAR(settings["cameras"]["file"]["principal_point_px"][0].get<double>(), j["cx_px"].get<double>(), 1e-9);
   OpenCvCamera oc;
   ASSERT_TRUE(readOpenCvCamera(yaml.string(), oc, error)) << error;
   EXPECT_NEAR(oc.camera_matrix(0, 0), j["fx_px"].get<double>(), 1e-9);
@@ -69,9 +69,11 @@ TEST(CliIntrinsics, CalibratesAnAsymmetricGridAndWritesEveryFile) {
   const auto imported = dir / "imported.json";
   const test::CliRun s = cli("settings --import-opencv-camera " + yaml.string() + " --out " + imported.string());
   ASSERT_EQ(s.exit_code, 0) << s.err;
-  const auto cam = nlohmann::json::parse(test::readText(imported))["camera"];
-  EXPECT_NEAR(cam["image_plane_distance_mm"].get<double>(), settings["camera"]["image_plane_distance_mm"].get<double>(), 1e-9);
-  EXPECT_NEAR(cam["distortion"]["k1"].get<double>(), settings["camera"]["distortion"]["k1"].get<double>(), 1e-15);
+  const auto& calibrated = settings["cameras"]["file"];
+  for (const auto& cam : nlohmann::json::parse(test::readText(imported))["cameras"]) {  // every source's
+    EXPECT_NEAR(cam["image_plane_distance_mm"].get<double>(), calibrated["image_plane_distance_mm"].get<double>(), 1e-9);
+    EXPECT_NEAR(cam["distortion"]["k1"].get<double>(), calibrated["distortion"]["k1"].get<double>(), 1e-15);
+  }
 
   // Too few images, and a bad pattern description, are named.
   const test::CliRun few = cli("calibrate --intrinsics --pattern asymmetric-circles --columns 4 --rows 11 --spacing-mm 15 " +

@@ -122,10 +122,12 @@ TEST(CliReconstruction, FrameOfAnotherSizeIsANamedErrorRow) {
   CliRun r = cli("settings");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   nlohmann::json small = nlohmann::json::parse(r.out);
-  small["camera"]["width"] = 320;
-  small["camera"]["height"] = 240;
-  small["camera"]["principal_point_px"] = {159.5, 119.5};
-  small["camera"]["image_plane_distance_mm"] = 4.0;
+  for (auto& camera : small["cameras"]) {  // rendered (Virtual) and read back (File) through it
+    camera["width"] = 320;
+    camera["height"] = 240;
+    camera["principal_point_px"] = {159.5, 119.5};
+    camera["image_plane_distance_mm"] = 4.0;
+  }
   std::string e;
   ASSERT_TRUE(writeFileAtomically((dir / "small.json").string(), small.dump(2), e)) << e;
   r = cli("render --config " + (dir / "small.json").string() + " --out " + dir.string() +
@@ -147,7 +149,7 @@ TEST(CliReconstruction, EstimateD0RecoversTheRenderedImagePlaneDistance) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   nlohmann::json settings = nlohmann::json::parse(r.out);
   const double d0 = 12.0, depth = 900.0;
-  settings["camera"]["image_plane_distance_mm"] = d0;
+  for (auto& camera : settings["cameras"]) camera["image_plane_distance_mm"] = d0;
   const std::string config = (dir / "d0.json").string();
   std::string e;
   ASSERT_TRUE(writeFileAtomically(config, settings.dump(2), e)) << e;

@@ -147,6 +147,54 @@ TEST(Cli, MissingCameraIsOneNamedLineAndExitOne) {
   EXPECT_NE(r.err.find("--resolution"), std::string::npos) << r.err;
 }
 
+TEST(Cli, CaptureCardOptionsAreCheckedBeforeTheDevice) {
+  const std::string device = "/dev/video-imagepro-missing";
+  CliRun r = cli("reconstruct --camera " + device + " --input one");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--input"), std::string::npos) << r.err;
+  r = cli("reconstruct --camera " + device + " --input -1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--input must be 0 or more"), std::string::npos) << r.err;
+  r = cli("reconstruct --camera " + device + " --standard PAL-M");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--standard: \"PAL-M\" is not one of PAL, NTSC, SECAM"), std::string::npos) << r.err;
+  r = cli("reconstruct --virtual --frames 1 --standard NTSC");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--standard goes with --camera"), std::string::npos) << r.err;
+  // Well formed, in any case: the device is tried (and missing).
+  r = cli("reconstruct --camera " + device + " --input 1 --standard pal --frames 1");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(device + ": no camera device at that path"), std::string::npos) << r.err;
+}
+
+// The command line's input picks the source whose camera model reconstructs: image files
+// the File source's, --virtual the Virtual source's.
+TEST(Cli, TheInputPicksItsSourcesCamera) {
+  const fs::path dir = freshDir("cli_source_camera");
+  CliRun r = cli("render --out " + dir.string() + " --frames 1 --mode binary");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string e;
+  // The File source's image plane twice as far: the same image is a target twice as far away.
+  ASSERT_TRUE(writeFileAtomically((dir / "cameras.json").string(),
+                                  R"({"cameras": {"file": {"image_plane_distance_mm": 16.0}}})", e));
+  const std::string config = " --config " + (dir / "cameras.json").string();
+  const auto tz = [](const std::string& csv) {
+    const std::string row = lines(csv).at(1);
+    return std::stod(row.substr(row.rfind(',') + 1));
+  };
+  r = cli("reconstruct" + config + " " + (dir / "frame_00000.png").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NEAR(tz(r.out), 1600.0, 8.0) << r.out;
+  r = cli("reconstruct" + config + " --virtual --frames 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NEAR(tz(r.out), 800.0, 4.0) << r.out;
+  // An older file's one camera is every source's.
+  ASSERT_TRUE(writeFileAtomically((dir / "old.json").string(), R"({"camera": {"image_plane_distance_mm": 16.0}})", e));
+  r = cli("reconstruct --config " + (dir / "old.json").string() + " --virtual --frames 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NEAR(tz(r.out), 800.0, 4.0) << r.out;  // rendered and reconstructed through the same camera
+}
+
 TEST(Cli, ReconstructWritesARowPerFrameEvenForBadFiles) {
   const fs::path dir = freshDir("cli_reconstruct");
   CliRun r = cli("render --out " + dir.string() + " --frames 2 --mode binary");

@@ -1,4 +1,5 @@
-// The calibration file: {"camera": {...}} read by the settings reader, as the CLI's
+// The calibration file, {"cameras": {"<source>": {...}}} (or an older file's one
+// {"camera": {...}}), read by the settings reader, as the CLI's
 // --config and the application's Load Settings read it. A camera it accepts must write
 // back to the same file, and its lens model must undistort points without failing.
 #include <Eigen/Core>
@@ -30,7 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (calibrationFileJson(again) != written) fuzz::fail("a written calibration file loads as another camera", written);
 
   // The corners, the centre and an edge midpoint of the image, both undistortions.
-  const CameraModel& cam = settings.camera;
+  const CameraModel& cam = settings.camera();
   const double w = cam.width - 1.0, h = cam.height - 1.0;
   const std::array<Eigen::Vector2d, 4> corners{Eigen::Vector2d(0, 0), Eigen::Vector2d(w, h),
                                                Eigen::Vector2d(0.5 * w, 0.5 * h), Eigen::Vector2d(w, 0.5 * h)};

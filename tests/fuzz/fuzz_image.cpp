@@ -30,9 +30,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (grey.total() > 512u * 512u) return 0;
 
   Settings settings;
-  settings.camera.width = grey.cols;
-  settings.camera.height = grey.rows;
-  settings.camera.principal_point_px = {0.5 * (grey.cols - 1), 0.5 * (grey.rows - 1)};
+  settings.camera().width = grey.cols;
+  settings.camera().height = grey.rows;
+  settings.camera().principal_point_px = {0.5 * (grey.cols - 1), 0.5 * (grey.rows - 1)};
   Engine engine(settings);
   Frame frame;
   frame.image = grey;

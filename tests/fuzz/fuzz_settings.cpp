@@ -18,7 +18,7 @@ const cv::Mat& defaultSceneFrame() {
   static const cv::Mat frame = [] {
     const Settings d;
     cv::Mat out;
-    renderTarget(d.camera, d.target, d.virtual_scene, Pose{10.0, -5.0, 0.0, 5.0, 0.0, 700.0}, out);
+    renderTarget(d.camera(), d.target, d.virtual_scene, Pose{10.0, -5.0, 0.0, 5.0, 0.0, 700.0}, out);
     return out;
   }();
   return frame;
@@ -40,7 +40,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (settingsToJson(again) != saved) fuzz::fail("saved settings load as other settings", saved);
 
   const cv::Mat& image = defaultSceneFrame();
-  if (settings.camera.width != image.cols || settings.camera.height != image.rows) return 0;
+  if (settings.camera().width != image.cols || settings.camera().height != image.rows) return 0;
   Engine engine(settings);
   Frame frame;
   frame.image = image;

@@ -20,7 +20,7 @@ def test_render_gives_the_cameras_frame():
     image = imagepro.render(POSES[0], s)
     assert image.shape == (480, 640) and image.dtype == np.uint8
     assert image.min() < 40 and image.max() > 200  # the black card and the white disk
-    s["camera.width"], s["camera.height"] = 320, 240
+    s["cameras.virtual.width"], s["cameras.virtual.height"] = 320, 240
     assert imagepro.render(POSES[0], s).shape == (240, 320)
     pattern = imagepro.render(POSES[0], pattern=True)
     assert not np.array_equal(pattern, image)

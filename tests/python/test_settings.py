@@ -7,18 +7,18 @@ import imagepro
 def test_defaults_read_by_key():
     s = imagepro.Settings()
     assert s == imagepro.Settings.defaults()
-    assert s["camera.width"] == 640
-    assert s.get("camera.principal_point_px[1]") == pytest.approx(239.5)
+    assert s["cameras.virtual.width"] == 640
+    assert s.get("cameras.virtual.principal_point_px[1]") == pytest.approx(239.5)
     assert s["pipeline.tracking.mode"] in imagepro.Settings.key_info("pipeline.tracking.mode")["choices"]
     assert isinstance(s["camera_source.controls"], dict)
-    assert "camera.width" in s and "camera.nothing" not in s
+    assert "cameras.virtual.width" in s and "cameras.virtual.nothing" not in s
     assert "the defaults" in repr(s)
 
 
 def test_every_key_reads_and_sets_back_to_itself():
     s = imagepro.Settings()
     keys = imagepro.Settings.keys()
-    assert len(keys) > 50 and keys[0] == "camera.width"
+    assert len(keys) > 50 and keys[0] == "cameras.file.width"
     for key in keys:
         s[key] = s[key]
     assert s == imagepro.Settings()
@@ -26,10 +26,10 @@ def test_every_key_reads_and_sets_back_to_itself():
 
 def test_set_changes_the_value_and_the_json():
     s = imagepro.Settings()
-    s["camera.principal_point_px[0]"] = 321.25
+    s["cameras.virtual.principal_point_px[0]"] = 321.25
     s.set("pipeline.tracking.mode", "off")
     s["camera_source.controls"] = {"exposure_absolute": 150}
-    assert s["camera.principal_point_px[0]"] == 321.25
+    assert s["cameras.virtual.principal_point_px[0]"] == 321.25
     assert s["pipeline.tracking.mode"] == "off"
     assert s["camera_source.controls"] == {"exposure_absolute": 150}
     assert '"exposure_absolute": 150' in s.to_json()
@@ -39,8 +39,8 @@ def test_set_changes_the_value_and_the_json():
 
 def test_round_trip_through_a_file(tmp_path):
     s = imagepro.Settings()
-    s["camera.width"] = 800
-    s["camera.height"] = 600
+    s["cameras.virtual.width"] = 800
+    s["cameras.virtual.height"] = 600
     s["target.radius_mm"] = 40.0
     s["virtual.noise_sigma"] = 2.5
     s["pipeline.ellipse.method"] = "bennett"
@@ -48,28 +48,28 @@ def test_round_trip_through_a_file(tmp_path):
     s.save(str(path))
     loaded = imagepro.Settings.load(str(path))
     assert loaded == s
-    assert loaded["camera.width"] == 800 and loaded["target.radius_mm"] == 40.0
+    assert loaded["cameras.virtual.width"] == 800 and loaded["target.radius_mm"] == 40.0
     assert loaded["pipeline.ellipse.method"] == "bennett"
 
 
 def test_values_the_file_refuses_raise_named_errors():
     s = imagepro.Settings()
-    with pytest.raises(imagepro.InvalidSettings, match="camera.width"):
-        s["camera.width"] = 0  # below the key's range
+    with pytest.raises(imagepro.InvalidSettings, match="cameras.virtual.width"):
+        s["cameras.virtual.width"] = 0  # below the key's range
     with pytest.raises(imagepro.InvalidSettings, match="pipeline.tracking.mode"):
         s["pipeline.tracking.mode"] = "sideways"
-    with pytest.raises(imagepro.InvalidSettings, match="camera.width"):
-        s["camera.width"] = 640.5  # a whole number expected
+    with pytest.raises(imagepro.InvalidSettings, match="cameras.virtual.width"):
+        s["cameras.virtual.width"] = 640.5  # a whole number expected
     with pytest.raises(imagepro.InvalidSettings, match="unknown key"):
-        s["camera.colour"] = 1
+        s["cameras.virtual.colour"] = 1
     with pytest.raises(imagepro.InvalidSettings):
         s["target.radius_mm"] = [1, 2]
     with pytest.raises(imagepro.InvalidSettings):
         s["target.radius_mm"] = float("inf")
     with pytest.raises(imagepro.InvalidSettings):
-        s["camera.width"] = 2**80
+        s["cameras.virtual.width"] = 2**80
     assert s == imagepro.Settings()  # a refused value changes nothing
-    info = imagepro.Settings.key_info("camera.width")
+    info = imagepro.Settings.key_info("cameras.virtual.width")
     assert info["type"] == "whole number" and info["min"] == 1
 
 
@@ -77,10 +77,31 @@ def test_file_errors_raise_named_errors(tmp_path):
     with pytest.raises(imagepro.FileNotFound):
         imagepro.Settings.load(str(tmp_path / "missing.json"))
     bad = tmp_path / "bad.json"
-    bad.write_text('{"camera": {"width": "wide"}}')
+    bad.write_text('{"camera": {"width": "wide"}}')  # an older file's one camera
     with pytest.raises(imagepro.InvalidSettings, match="camera.width"):
         imagepro.Settings.load(str(bad))
     with pytest.raises(imagepro.FileNotWritable):
         imagepro.Settings().save(str(tmp_path / "no" / "such" / "folder" / "s.json"))
     with pytest.raises(imagepro.InvalidSettings):
         imagepro.Settings.from_json("[1, 2]")
+
+
+def test_a_camera_per_source_and_the_source_in_use(tmp_path):
+    s = imagepro.Settings()
+    assert s.source == "virtual"
+    s["cameras.file.image_plane_distance_mm"] = 12.0
+    s["cameras.camera.width"], s["cameras.camera.height"] = 768, 576
+    path = tmp_path / "cameras.json"
+    s.save(str(path))
+    loaded = imagepro.Settings.load(str(path))
+    assert loaded["cameras.file.image_plane_distance_mm"] == 12.0
+    assert loaded["cameras.camera.width"] == 768
+    assert loaded["cameras.virtual.image_plane_distance_mm"] == 8.0
+    s.source = "file"
+    assert s.source == "file"
+    with pytest.raises(imagepro.InvalidSettings, match="source"):
+        s.source = "tv"
+    old = tmp_path / "old.json"
+    old.write_text('{"camera": {"image_plane_distance_mm": 9.5}}')
+    loaded = imagepro.Settings.load(str(old))
+    assert [loaded[f"cameras.{k}.image_plane_distance_mm"] for k in ("file", "camera", "virtual")] == [9.5] * 3

@@ -27,7 +27,7 @@ Pose virtualCalibrationView(int slot) {
 }
 
 void renderVirtualCalibrationImage(const Settings& settings, int slot, cv::Mat& grey) {
-  renderPattern(settings.camera, settings.target, settings.pattern, settings.virtual_scene,
+  renderPattern(settings.camera(), settings.target, settings.pattern, settings.virtual_scene,
                 virtualCalibrationView(slot), grey, static_cast<std::uint64_t>(slot) + 1);
 }
 
@@ -36,7 +36,7 @@ void analyseCalibrationImage(const Settings& settings, CalibrationImage& image) 
   image.target.reset();
   image.spots.clear();
   image.first = {};
-  const CameraModel& camera = settings.camera;
+  const CameraModel& camera = settings.camera();
   image.camera_size = cv::Size(camera.width, camera.height);
   if (image.grey.empty() || image.grey.type() != CV_8UC1) {
     image.first.status = Status::EmptyFrame;
@@ -60,7 +60,7 @@ void analyseCalibrationImage(const Settings& settings, CalibrationImage& image) 
   FrameResult result;
   const PatternLocator locate = [&](const cv::Mat& grey, const CameraModel& estimate, Pose& pose) {
     Settings current = located;
-    current.camera = estimate;
+    current.camera() = estimate;
     engine.setSettings(current);
     engine.resetTracking();
     Frame frame;

@@ -252,7 +252,7 @@ void CalibrationWizard::addIterationRow(const CalibrationIteration& it) {
 }
 
 void CalibrationWizard::showField() {
-  const CameraModel& camera = window_.settings().camera;
+  const CameraModel& camera = window_.settings().camera();
   const Distortion d = result_ ? result_->distortion : camera.distortion;
   field_->setField(camera, d);
   const QString what = !result_                ? tr("In the settings now (not calibrated here yet)")
@@ -273,19 +273,18 @@ void CalibrationWizard::showField() {
 void CalibrationWizard::setAndUse() {
   if (!result_ || !ok(result_->status)) return;
   Settings next = window_.settings();
-  next.camera.distortion = result_->distortion;
+  next.camera().distortion = result_->distortion;
   next.pipeline.reconstruction.distortion_correction = true;
   window_.setSettings(next);
-  setRunStatus(tr("Set and Use: the settings' camera now has %1, and distortion correction is on for the source in "
-                  "use.")
-                   .arg(distortionText(result_->distortion)),
+  setRunStatus(tr("Set and Use: the %1 source's camera now has %2, and distortion correction is on.")
+                   .arg(sourceKindLabel(next.source), distortionText(result_->distortion)),
                false);
 }
 
 bool CalibrationWizard::saveCalibration(const QString& path) {
   if (!result_ || !ok(result_->status)) return false;
   Settings calibrated = window_.settings();
-  calibrated.camera.distortion = result_->distortion;
+  calibrated.camera().distortion = result_->distortion;
   QString message;
   const bool saved = saveCameraSection(path, calibrated, message);
   setRunStatus(message, !saved);

@@ -52,7 +52,7 @@ QTableWidgetItem* cell(const QString& text) {
 D0Dialog::D0Dialog(MainWindow& window) : QDialog(&window), window_(window) {
   setObjectName(QStringLiteral("d0Dialog"));
   setWindowTitle(tr("Image Plane Distance d0"));
-  const double d0 = window_.settings().camera.image_plane_distance_mm;
+  const double d0 = window_.settings().camera().image_plane_distance_mm;
 
   focal_ = new QDoubleSpinBox;
   focal_->setObjectName(QStringLiteral("d0FocalLength"));
@@ -205,8 +205,8 @@ void D0Dialog::renderVirtual() {
   Pose pose = kVirtualView;
   if (distance_->value() > 0.0) pose.tz_mm = distance_->value();
   cv::Mat grey;
-  renderTarget(s.camera, s.target, s.virtual_scene, pose, grey, entries_.size() + 1);
-  addFrame(grey, tr("Virtual, d0 %1 mm, %2 mm away").arg(s.camera.image_plane_distance_mm).arg(pose.tz_mm));
+  renderTarget(s.camera(), s.target, s.virtual_scene, pose, grey, entries_.size() + 1);
+  addFrame(grey, tr("Virtual, d0 %1 mm, %2 mm away").arg(s.camera().image_plane_distance_mm).arg(pose.tz_mm));
 }
 
 void D0Dialog::clearFrames() {
@@ -225,7 +225,7 @@ bool D0Dialog::setAndUse() {
   const D0Summary s = summary();
   if (s.count == 0) return false;
   Settings next = window_.settings();
-  next.camera.image_plane_distance_mm = s.mean_mm;
+  next.camera().image_plane_distance_mm = s.mean_mm;
   window_.setSettings(next);
   summary_->setText(summaryText() + QLatin1Char(' ') + tr("The settings' camera now has d0 = %1 mm.").arg(s.mean_mm, 0, 'f', 6));
   return true;

@@ -225,18 +225,18 @@ void IntrinsicsPage::onRunUpdate(const IntrinsicsRunUpdate& update) {
 void IntrinsicsPage::setAndUse() {
   if (!result_ || !ok(result_->status)) return;
   Settings next = window_.settings();
-  applyIntrinsics(*result_, next.camera);
+  applyIntrinsics(*result_, next.camera());
   next.pipeline.reconstruction.distortion_correction = true;
   window_.setSettings(next);
-  setRunStatus(tr("Set and Use: the settings' camera is now %1, with its distortion; distortion correction is on.")
-                   .arg(cameraText(next.camera)),
+  setRunStatus(tr("Set and Use: the %1 source's camera is now %2, with its distortion; distortion correction is on.")
+                   .arg(sourceKindLabel(next.source), cameraText(next.camera())),
                false);
 }
 
 bool IntrinsicsPage::saveCalibration(const QString& path) {
   if (!result_ || !ok(result_->status)) return false;
   Settings calibrated = window_.settings();
-  applyIntrinsics(*result_, calibrated.camera);
+  applyIntrinsics(*result_, calibrated.camera());
   QString message;
   const bool saved = saveCameraSection(path, calibrated, message);
   setRunStatus(message, !saved);
@@ -245,7 +245,7 @@ bool IntrinsicsPage::saveCalibration(const QString& path) {
 
 bool IntrinsicsPage::exportOpenCvCamera(const QString& path) {
   const bool found = result_ && ok(result_->status);
-  const OpenCvCamera camera = found ? openCvCameraOf(*result_) : openCvCameraOf(window_.settings().camera);
+  const OpenCvCamera camera = found ? openCvCameraOf(*result_) : openCvCameraOf(window_.settings().camera());
   std::string error;
   if (!writeOpenCvCamera(path.toStdString(), camera, error)) {
     setRunStatus(tr("OpenCV camera not exported: %1").arg(QString::fromStdString(error)), true);
@@ -266,12 +266,12 @@ bool IntrinsicsPage::importOpenCvCamera(const QString& path) {
   }
   Settings next = window_.settings();
   double fit_px = 0.0;
-  applyOpenCvCamera(camera, next.camera, &fit_px);
+  applyOpenCvCamera(camera, next.camera(), &fit_px);
   next.pipeline.reconstruction.distortion_correction = true;
   window_.setSettings(next);
   setRunStatus(tr("Imported %1: the settings' camera is now %2; its distortion in this project's model within %3 px "
                   "RMS of OpenCV's; distortion correction is on.")
-                   .arg(QFileInfo(path).fileName(), cameraText(next.camera))
+                   .arg(QFileInfo(path).fileName(), cameraText(next.camera()))
                    .arg(fit_px, 0, 'f', 4),
                false);
   return true;

@@ -159,6 +159,12 @@ void MainWindow::buildDocks() {
   connect(source, &SourcePanel::openFileRequested, this, [this] { openDialog(false); });
   connect(source, &SourcePanel::startRequested, this, [this] { startSource(); });
   connect(source, &SourcePanel::stopRequested, this, &MainWindow::stopSource);
+  // The source chosen is the source in use: its camera model is the one shown and calibrated.
+  connect(source, &SourcePanel::kindChanged, this, [this](SourceKind kind) {
+    settings_.source = kind;
+    binder_->refresh();
+    worker_->setSettings(settings_);
+  });
   OutputPanel* output = control_panel_->outputPanel();
   connect(output, &OutputPanel::dataOutToggled, this, &MainWindow::dataOutDialog);
   connect(output, &OutputPanel::screenshotRequested, this, &MainWindow::screenshotDialog);
@@ -246,6 +252,7 @@ void MainWindow::onSettingsEdited() { worker_->setSettings(settings_); }
 
 void MainWindow::setSettings(const Settings& settings) {
   settings_ = settings;
+  settings_.source = control_panel_->sourcePanel()->kind();  // the panel's, never a file's
   binder_->refresh();
   worker_->setSettings(settings_);
 }

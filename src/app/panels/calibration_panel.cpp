@@ -38,7 +38,7 @@ CalibrationPanel::CalibrationPanel(SettingsBinder& binder, QWidget* parent)
   connect(d0_, &QPushButton::clicked, this, &CalibrationPanel::d0Requested);
   binder.onAnyUpdate([this, &binder] {
     const Settings& s = binder.model();
-    const Distortion& d = s.camera.distortion;
+    const Distortion& d = s.camera().distortion;
     readout_->setText(tr("k1 %1  k2 %2\np1 %3  p2 %4\ncorrection %5")
                           .arg(d.k1, 0, 'e', 2)
                           .arg(d.k2, 0, 'e', 2)

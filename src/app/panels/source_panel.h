@@ -26,9 +26,9 @@ class SourcePanel : public QWidget {
   QComboBox* combo() const { return combo_; }
 
  signals:
-  void kindChanged(imagepro::app::SourceKind kind);
+  void kindChanged(imagepro::SourceKind kind);
   void openFileRequested();
-  void startRequested(imagepro::app::SourceKind kind);
+  void startRequested(imagepro::SourceKind kind);
   void stopRequested();
 
  private:

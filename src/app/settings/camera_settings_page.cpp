@@ -20,6 +20,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/settings/enum_names.h"
+
 namespace imagepro::app {
 
 namespace {
@@ -126,6 +128,16 @@ CameraSettingsPage::CameraSettingsPage(Settings& model, CameraDevices devices, Q
   rate_->setObjectName(QStringLiteral("cameraRate"));
   rate_->setToolTip(tr("The frame rate asked for (thesis 5.2.1: 25 frames/s); the nearest the device offers is taken"));
   form->addRow(tr("Frame rate"), rate_);
+  // A capture card's (composite, S-Video): rows shown only for a device that has the choice.
+  input_ = new QComboBox;
+  input_->setObjectName(QStringLiteral("cameraInput"));
+  input_->setToolTip(tr("The capture card's input the Camera source reads (VIDIOC_S_INPUT)"));
+  form->addRow(tr("Input"), input_);
+  standard_ = new QComboBox;
+  standard_->setObjectName(QStringLiteral("cameraStandard"));
+  standard_->setToolTip(tr("The TV standard of the analogue signal at the input (VIDIOC_S_STD)"));
+  form->addRow(tr("TV standard"), standard_);
+  form_ = form;
   note_ = new QLabel;
   note_->setObjectName(QStringLiteral("cameraNote"));
   note_->setWordWrap(true);
@@ -170,6 +182,15 @@ CameraSettingsPage::CameraSettingsPage(Settings& model, CameraDevices devices, Q
     if (updating_ || index < 0) return;
     model_.camera_source.frame_rate_hz = rate_->itemData(index).toDouble();
   });
+  connect(input_, &QComboBox::currentIndexChanged, this, [this](int index) {
+    if (updating_ || index < 0) return;
+    model_.camera_source.input = input_->itemData(index).toInt();
+    fillStandards();  // the standards are the input's
+  });
+  connect(standard_, &QComboBox::currentIndexChanged, this, [this](int index) {
+    if (updating_ || index < 0) return;
+    model_.camera_source.standard = static_cast<TvStandard>(standard_->itemData(index).toInt());
+  });
   rescan();
 }
 
@@ -208,6 +229,7 @@ void CameraSettingsPage::rescan() {
   status_->setText(tr("No camera found"));
   fillSizes();
   fillRates();
+  fillInputs();
   noteModelSize();
   buildControls();
 }
@@ -240,6 +262,7 @@ void CameraSettingsPage::showDevice(const DeviceInfo& info) {
   problem_->clear();
   fillSizes();
   fillRates();
+  fillInputs();
   noteModelSize();
   buildControls();
 }
@@ -253,12 +276,13 @@ void CameraSettingsPage::showDeviceError(Status status, const std::string& error
   problem_->clear();
   fillSizes();
   fillRates();
+  fillInputs();
   noteModelSize();
   buildControls();
 }
 
 void CameraSettingsPage::fillSizes() {
-  const CameraModel& cam = model_.camera;
+  const CameraModel& cam = model_.camera(SourceKind::Camera);
   std::vector<std::pair<int, int>> sizes;
   for (const FormatInfo& f : info_.formats) {
     if (!f.format) continue;  // not readable: not offered
@@ -287,8 +311,8 @@ void CameraSettingsPage::fillSizes() {
 void CameraSettingsPage::fillRates() {
   const CameraSourceOptions& o = model_.camera_source;
   const bool own_size = o.width > 0 && o.height > 0;
-  const int width = own_size ? o.width : model_.camera.width;
-  const int height = own_size ? o.height : model_.camera.height;
+  const int width = own_size ? o.width : model_.camera(SourceKind::Camera).width;
+  const int height = own_size ? o.height : model_.camera(SourceKind::Camera).height;
   std::vector<double> rates;
   for (const FormatInfo& f : info_.formats) {
     if (!f.format) continue;
@@ -312,12 +336,53 @@ void CameraSettingsPage::fillRates() {
   updating_ = false;
 }
 
+void CameraSettingsPage::fillInputs() {
+  const CameraSourceOptions& o = model_.camera_source;
+  updating_ = true;
+  input_->clear();
+  input_->addItem(tr("As the device has it"), -1);
+  for (const VideoInput& in : info_.inputs)
+    input_->addItem(tr("%1: %2").arg(in.index).arg(text(in.name)), static_cast<int>(in.index));
+  int index = input_->findData(o.input);
+  if (index < 0) {
+    input_->addItem(tr("%1 (not on this device)").arg(o.input), o.input);
+    index = input_->count() - 1;
+  }
+  input_->setCurrentIndex(index);
+  updating_ = false;
+  // One input is no choice (a USB camera lists its sensor as one).
+  form_->setRowVisible(input_, info_.inputs.size() > 1 || index > 0);
+  fillStandards();
+}
+
+void CameraSettingsPage::fillStandards() {
+  const CameraSourceOptions& o = model_.camera_source;
+  const std::vector<TvStandard> offered = tvStandardsOffered(info_, o.input);
+  updating_ = true;
+  standard_->clear();
+  standard_->addItem(tr("As the device has it"), static_cast<int>(TvStandard::Keep));
+  for (const TvStandard t : offered) {
+    const std::string_view label = enumLabel(t);
+    standard_->addItem(QString::fromUtf8(label.data(), static_cast<qsizetype>(label.size())), static_cast<int>(t));
+  }
+  int index = standard_->findData(static_cast<int>(o.standard));
+  if (index < 0) {
+    const std::string_view label = enumLabel(o.standard);
+    const QString name = QString::fromUtf8(label.data(), static_cast<qsizetype>(label.size()));
+    standard_->addItem(tr("%1 (not taken by this input)").arg(name), static_cast<int>(o.standard));
+    index = standard_->count() - 1;
+  }
+  standard_->setCurrentIndex(index);
+  updating_ = false;
+  form_->setRowVisible(standard_, !offered.empty() || index > 0);
+}
+
 void CameraSettingsPage::noteModelSize() {
   const CameraSourceOptions& o = model_.camera_source;
-  const CameraModel& cam = model_.camera;
+  const CameraModel& cam = model_.camera(SourceKind::Camera);
   if (o.width > 0 && o.height > 0 && (o.width != cam.width || o.height != cam.height))
-    note_->setText(tr("The camera model (Camera tab) is for %1 x %2 frames: poses from %3 x %4 frames need a "
-                      "model calibrated at that size.")
+    note_->setText(tr("The Camera source's camera model (Camera tab) is for %1 x %2 frames: poses from %3 x %4 "
+                      "frames need a model calibrated at that size.")
                        .arg(cam.width)
                        .arg(cam.height)
                        .arg(o.width)

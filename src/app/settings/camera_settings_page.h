@@ -1,7 +1,8 @@
 #pragma once
 // The Settings dialog's Camera device page (thesis 2.2: the frame grabber, here a V4L2
 // device): which device the Camera source opens (the /dev/video* nodes found, or any
-// path typed in), at which size and rate (those the device lists), and the device's
+// path typed in), at which size and rate (those the device lists), a capture card's input
+// and TV standard (shown only for a device that offers a choice of them), and the device's
 // controls (exposure, gain, brightness, focus ...), one widget per control type, showing
 // the device's current values. A changed control is set at once (on the streaming
 // camera, or on the device) and stored in the settings' camera_source, which sets it
@@ -62,6 +63,8 @@ class CameraSettingsPage : public QWidget {
   void showDeviceError(Status status, const std::string& error);
   void fillSizes();
   void fillRates();
+  void fillInputs();
+  void fillStandards();  // those of the chosen input
   void noteModelSize();
   void buildControls();
   QWidget* controlWidget(const CameraControl& control);
@@ -79,6 +82,9 @@ class CameraSettingsPage : public QWidget {
   QLabel* status_;
   QComboBox* size_;
   QComboBox* rate_;
+  QComboBox* input_;
+  QComboBox* standard_;
+  QFormLayout* form_;
   QLabel* note_;
   QLabel* problem_;  // why the last control change was refused
   QWidget* controls_box_;

@@ -1,10 +1,13 @@
 #include "app/settings/settings_dialog.h"
 
+#include <QComboBox>
 #include <QHBoxLayout>
 #include <QPushButton>
+#include <QSignalBlocker>
 
 #include "app/panels/panels.h"
 #include "app/settings/settings_binder.h"
+#include "app/worker/source_kind.h"
 #include "ui_settings_dialog.h"
 
 namespace imagepro::app {
@@ -35,7 +38,8 @@ SettingsDialog::SettingsDialog(const Settings& settings, QWidget* parent, Camera
   buildScene();
   binder_->refresh();
   connect(binder_, &SettingsBinder::changed, camera_page_, &CameraSettingsPage::cameraModelChanged);
-  ui_->note->setText(tr("The camera and distortion apply to every source; the virtual source renders with them."));
+  ui_->note->setText(tr("Each source has its own camera model and distortion (thesis A.3); the virtual source "
+                        "renders with its own. The source in use is the one shown first."));
   connect(ui_->buttons, &QDialogButtonBox::accepted, this, [this] {
     emit applied();
     accept();
@@ -47,7 +51,7 @@ SettingsDialog::SettingsDialog(const Settings& settings, QWidget* parent, Camera
 SettingsDialog::~SettingsDialog() = default;
 
 void SettingsDialog::applyTo(Settings& into) const {
-  into.camera = settings_.camera;
+  into.cameras = settings_.cameras;
   into.target = settings_.target;
   into.virtual_scene = settings_.virtual_scene;
   into.camera_source = settings_.camera_source;
@@ -64,34 +68,59 @@ void SettingsDialog::buildTarget() {
                                         "targetSpotOffset", tr("Distance between the centres of the two spots")));
 }
 
+QComboBox* SettingsDialog::sourceChooser(const char* name) {
+  auto* combo = new QComboBox;
+  combo->setObjectName(QLatin1String(name));
+  for (const SourceKind k : kSourceKinds) combo->addItem(sourceKindLabel(k), static_cast<int>(k));
+  combo->setCurrentIndex(combo->findData(static_cast<int>(settings_.source)));
+  combo->setToolTip(tr("Whose camera model the fields below show and edit: each source has its own"));
+  connect(combo, &QComboBox::currentIndexChanged, this, [this, combo] {
+    settings_.source = static_cast<SourceKind>(combo->currentData().toInt());
+    for (QComboBox* other : source_choosers_) {
+      const QSignalBlocker block(other);
+      other->setCurrentIndex(combo->currentIndex());
+    }
+    binder_->refresh();
+    camera_page_->cameraModelChanged();
+  });
+  source_choosers_.push_back(combo);
+  return combo;
+}
+
+void SettingsDialog::showSource(SourceKind kind) {
+  source_choosers_.front()->setCurrentIndex(source_choosers_.front()->findData(static_cast<int>(kind)));
+}
+
 void SettingsDialog::buildCamera() {
   auto* f = ui_->cameraForm;
   auto& b = *binder_;
-  f->addRow(tr("Width"), named(b.intSpin([](Settings& s) -> auto& { return s.camera.width; }, kPx), "cameraWidth"));
-  f->addRow(tr("Height"), named(b.intSpin([](Settings& s) -> auto& { return s.camera.height; }, kPx), "cameraHeight"));
+  f->addRow(tr("Camera model of"), sourceChooser("cameraModelSource"));
+  f->addRow(tr("Width"), named(b.intSpin([](Settings& s) -> auto& { return s.camera().width; }, kPx), "cameraWidth"));
+  f->addRow(tr("Height"), named(b.intSpin([](Settings& s) -> auto& { return s.camera().height; }, kPx), "cameraHeight"));
   f->addRow(tr("Image plane distance d0"),
-            named(b.doubleSpin([](Settings& s) -> auto& { return s.camera.image_plane_distance_mm; }, 4, kMm),
+            named(b.doubleSpin([](Settings& s) -> auto& { return s.camera().image_plane_distance_mm; }, 4, kMm),
                   "cameraD0", tr("Distance of the image plane from the projection centre (thesis 4.2)")));
   f->addRow(tr("Principal point u0"),
-            named(b.doubleSpin([](Settings& s) -> auto& { return s.camera.principal_point_px[0]; }, 2, kPx), "cameraU0"));
+            named(b.doubleSpin([](Settings& s) -> auto& { return s.camera().principal_point_px[0]; }, 2, kPx), "cameraU0"));
   f->addRow(tr("Principal point v0"),
-            named(b.doubleSpin([](Settings& s) -> auto& { return s.camera.principal_point_px[1]; }, 2, kPx), "cameraV0"));
-  f->addRow(tr("Pixel size sx"), named(b.number([](Settings& s) -> auto& { return s.camera.pixel_size_mm[0]; }), "cameraSx",
+            named(b.doubleSpin([](Settings& s) -> auto& { return s.camera().principal_point_px[1]; }, 2, kPx), "cameraV0"));
+  f->addRow(tr("Pixel size sx"), named(b.number([](Settings& s) -> auto& { return s.camera().pixel_size_mm[0]; }), "cameraSx",
                                        tr("mm per pixel, horizontal")));
-  f->addRow(tr("Pixel size sy"), named(b.number([](Settings& s) -> auto& { return s.camera.pixel_size_mm[1]; }), "cameraSy",
+  f->addRow(tr("Pixel size sy"), named(b.number([](Settings& s) -> auto& { return s.camera().pixel_size_mm[1]; }), "cameraSy",
                                        tr("mm per pixel, vertical")));
 }
 
 void SettingsDialog::buildDistortion() {
   auto* f = ui_->distortionForm;
   auto& b = *binder_;
-  f->addRow(tr("k1 (px^-2)"), named(b.number([](Settings& s) -> auto& { return s.camera.distortion.k1; }), "distortionK1",
+  f->addRow(tr("Distortion of"), sourceChooser("distortionSource"));
+  f->addRow(tr("k1 (px^-2)"), named(b.number([](Settings& s) -> auto& { return s.camera().distortion.k1; }), "distortionK1",
                                      tr("Radial distortion, second order (thesis eq. 4.7)")));
-  f->addRow(tr("k2 (px^-4)"), named(b.number([](Settings& s) -> auto& { return s.camera.distortion.k2; }), "distortionK2",
+  f->addRow(tr("k2 (px^-4)"), named(b.number([](Settings& s) -> auto& { return s.camera().distortion.k2; }), "distortionK2",
                                      tr("Radial distortion, fourth order (thesis eq. 4.7)")));
-  f->addRow(tr("p1 (px^-1)"), named(b.number([](Settings& s) -> auto& { return s.camera.distortion.p1; }), "distortionP1",
+  f->addRow(tr("p1 (px^-1)"), named(b.number([](Settings& s) -> auto& { return s.camera().distortion.p1; }), "distortionP1",
                                      tr("Tangential distortion (thesis eq. 4.5)")));
-  f->addRow(tr("p2 (px^-1)"), named(b.number([](Settings& s) -> auto& { return s.camera.distortion.p2; }), "distortionP2",
+  f->addRow(tr("p2 (px^-1)"), named(b.number([](Settings& s) -> auto& { return s.camera().distortion.p2; }), "distortionP2",
                                      tr("Tangential distortion (thesis eq. 4.5)")));
 }
 

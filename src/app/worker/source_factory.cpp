@@ -67,7 +67,7 @@ bool updateSource(FrameSource& source, SourceKind kind, const Settings& settings
     const CameraRequest& now = static_cast<CameraSource&>(source).request();
     const CameraRequest wanted = cameraRequest(settings);
     return now.device == wanted.device && now.width == wanted.width && now.height == wanted.height &&
-           now.frame_rate_hz == wanted.frame_rate_hz;
+           now.frame_rate_hz == wanted.frame_rate_hz && now.input == wanted.input && now.standard == wanted.standard;
   }
   return true;
 }

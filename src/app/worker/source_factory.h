@@ -24,7 +24,8 @@ std::unique_ptr<FrameSource> createSource(SourceKind kind, const Settings& setti
                                           std::string& error, std::vector<std::string>& warnings);
 // Gives a live source the new settings in place (the virtual scene and camera; its time
 // and key offset are kept). False when it cannot take them: a streaming camera asked for
-// another device, size or rate is to be opened anew. Files take nothing from the settings.
+// another device, size, rate, input or TV standard is to be opened anew. Files take
+// nothing from the settings.
 bool updateSource(FrameSource& source, SourceKind kind, const Settings& settings);
 // Sets one control of the camera `device` now: through `source` when it is a camera
 // streaming from that device, else on the device directly. Ok, or the named error.

@@ -1,26 +1,17 @@
 #include "app/worker/source_kind.h"
 
+#include "core/settings/enum_names.h"
+
 namespace imagepro::app {
 
-QString sourceKindLabel(SourceKind kind) {
-  switch (kind) {
-    case SourceKind::File: return QStringLiteral("File");
-    case SourceKind::Camera: return QStringLiteral("Camera");
-    case SourceKind::Virtual: return QStringLiteral("Virtual");
-  }
-  return {};
-}
+QString sourceKindLabel(SourceKind kind) { return QString::fromUtf8(enumLabel(kind).data(), enumLabel(kind).size()); }
 
-QString sourceKindName(SourceKind kind) { return sourceKindLabel(kind).toLower(); }
+QString sourceKindName(SourceKind kind) { return QString::fromUtf8(enumName(kind).data(), enumName(kind).size()); }
 
 bool parseSourceKind(const QString& name, SourceKind& out) {
-  for (SourceKind k : kSourceKinds) {
-    if (sourceKindName(k) == name.toLower()) {
-      out = k;
-      return true;
-    }
-  }
-  return false;
+  const auto parsed = parseEnum<SourceKind>(name.toLower().toStdString());
+  if (parsed) out = *parsed;
+  return parsed.has_value();
 }
 
 }  // namespace imagepro::app

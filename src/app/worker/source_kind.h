@@ -1,14 +1,11 @@
 #pragma once
-// The three input sources of the Input Source panel (thesis appendix A, 2.2).
+// The three input sources of the Input Source panel (thesis appendix A, 2.2): core's
+// SourceKind with the panel's words.
 #include <QString>
 
-#include <array>
+#include "core/settings/options.h"
 
 namespace imagepro::app {
-
-enum class SourceKind { File, Camera, Virtual };
-
-inline constexpr std::array<SourceKind, 3> kSourceKinds{SourceKind::File, SourceKind::Camera, SourceKind::Virtual};
 
 // Panel label and command-line name ("file", "camera", "virtual").
 QString sourceKindLabel(SourceKind kind);

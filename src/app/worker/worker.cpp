@@ -145,6 +145,7 @@ bool Worker::ensureSource(SourceKind kind, const QStringList& paths) {
   source_.reset();  // a camera frees its device before it is opened again
   source_ = createSource(kind, engine_.settings(), paths, error, warnings);
   kind_ = kind;
+  useSourceCamera();
   have_file_frame_ = false;
   if (!source_) {
     emit errorOccurred(QString::fromStdString(error));
@@ -219,6 +220,7 @@ bool Worker::applyPending() {
   }
   if (settings) {
     engine_.setSettings(*settings);
+    useSourceCamera();
     applyStream(settings->stream);
     if (source_ && !updateSource(*source_, kind_, *settings)) {
       // A camera asked for another device, size or rate: opened anew, or stopped with the error.
@@ -233,6 +235,13 @@ bool Worker::applyPending() {
   if (source_)
     for (VirtualKey key : keys) pressSourceKey(*source_, kind_, key);
   return settings.has_value();
+}
+
+void Worker::useSourceCamera() {
+  if (engine_.settings().source == kind_) return;
+  Settings s = engine_.settings();
+  s.source = kind_;
+  engine_.setSettings(s);
 }
 
 void Worker::applyStream(const StreamOptions& options) {

@@ -91,6 +91,8 @@ class Worker : public QObject {
   void setRunning(bool running);
   bool ensureSource(SourceKind kind, const QStringList& paths);
   void reportSourceError(Status status);
+  // The engine reconstructs with the camera model of the source that runs (kind_).
+  void useSourceCamera();
   // Opens, reopens or closes the live stream when its settings section changed.
   void applyStream(const StreamOptions& options);
 

@@ -25,7 +25,7 @@ void renderExposure(const Settings& settings, double t_s, const MotionBlur& blur
                     cv::Mat& out, PendulumRenderWorkspace& ws) {
   VirtualSceneOptions scene = pendulumScene(settings);
   if (!(blur.exposure_s > 0.0) || blur.subframes <= 1) {
-    renderTarget(settings.camera, settings.target, scene, virtualPoseAt(scene, t_s), out, frame_seed);
+    renderTarget(settings.camera(), settings.target, scene, virtualPoseAt(scene, t_s), out, frame_seed);
     return;
   }
   // Noise belongs to the sensor, after the exposure: render the instants without it.
@@ -33,7 +33,7 @@ void renderExposure(const Settings& settings, double t_s, const MotionBlur& blur
   scene.noise_sigma = 0.0;
   for (int j = 0; j < blur.subframes; ++j) {
     const double t = t_s + blur.exposure_s * ((j + 0.5) / blur.subframes - 0.5);
-    renderTarget(settings.camera, settings.target, scene, virtualPoseAt(scene, t), ws.sub, frame_seed);
+    renderTarget(settings.camera(), settings.target, scene, virtualPoseAt(scene, t), ws.sub, frame_seed);
     if (j == 0)
       ws.sub.convertTo(ws.sum, CV_32F);
     else
@@ -120,7 +120,7 @@ Status PendulumStillSource::next(Frame& out) {
   out.name.clear();
   const VirtualSceneOptions scene = pendulumScene(settings_);
   out.truth = pendulumPoseAtAngle(scene, angleDeg(index_));
-  renderTarget(settings_.camera, settings_.target, scene, *out.truth, out.image, static_cast<std::uint64_t>(index_));
+  renderTarget(settings_.camera(), settings_.target, scene, *out.truth, out.image, static_cast<std::uint64_t>(index_));
   ++index_;
   return Status::Ok;
 }

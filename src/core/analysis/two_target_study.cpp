@@ -88,7 +88,7 @@ TwoTargetStudyResult runVirtualTwoTargets(const Settings& settings, const Virtua
   TwoTargetStudyResult result;
   result.object = params.object;
   Settings s = settings;
-  if (params.thesis_lens) s.camera.distortion = kThesisCameraDistortion;
+  if (params.thesis_lens) s.camera().distortion = kThesisCameraDistortion;
   s.virtual_scene.noise_sigma = params.noise_sigma;
   if (!twoTargetObjectFits(params.object, s.virtual_scene.card_size_mm)) {
     result.status = Status::InvalidSettings;
@@ -115,7 +115,7 @@ TwoTargetStudyResult runVirtualTwoTargets(const Settings& settings, const Virtua
       const StudyLighting lighting = i < frames / 2 ? StudyLighting::Natural : StudyLighting::Extra;
       VirtualSceneOptions scene = s.virtual_scene;
       applyStudyLighting(lighting, scene);
-      renderTwoTargets(s.camera, s.target, scene, params.object, object_pose, image,
+      renderTwoTargets(s.camera(), s.target, scene, params.object, object_pose, image,
                        static_cast<std::uint64_t>(result.frames.size()), render_ws);
       TwoTargetFrame f;
       f.index = static_cast<std::int64_t>(result.frames.size());

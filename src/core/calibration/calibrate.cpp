@@ -32,7 +32,7 @@ PatternLocator targetPatternLocator(const Settings& settings) {
   auto engine = std::make_shared<Engine>(s);
   return [engine, s](const cv::Mat& grey, const CameraModel& camera, Pose& pose) {
     Settings current = s;
-    current.camera = camera;
+    current.camera() = camera;
     engine->setSettings(current);
     engine->resetTracking();
     Frame frame;
@@ -119,7 +119,7 @@ Status calibrateDistortion(const Settings& settings, std::span<const cv::Mat> im
   result.images.assign(images.size(), {});
   SpotFinderWorkspace finder;
   for (size_t i = 0; i < images.size(); ++i) {
-    const bool cameraSize = images[i].cols == settings.camera.width && images[i].rows == settings.camera.height;
+    const bool cameraSize = images[i].cols == settings.camera().width && images[i].rows == settings.camera().height;
     state[i].spotStatus = images[i].empty() || cameraSize
                               ? findPatternSpots(images[i], settings.pipeline.threshold, finder, state[i].observed)
                               : Status::FrameSizeMismatch;
@@ -130,7 +130,7 @@ Status calibrateDistortion(const Settings& settings, std::span<const cv::Mat> im
   MatchWorkspace matchWs;
   // Steps 3, 4 and 6 over every image.
   const DistortionMeasurement measure = [&](const Distortion& estimate, std::vector<DistortionSample>& samples) {
-    CameraModel camera = settings.camera;
+    CameraModel camera = settings.camera();
     camera.distortion = estimate;
     const Eigen::Vector2d pp(camera.u0(), camera.v0());
     Status firstError = Status::Ok;
@@ -195,8 +195,8 @@ Status calibrateDistortion(const Settings& settings, std::span<const cv::Mat> im
     result.history.back().images_used = copy.images_used;
     if (onIteration) onIteration(copy);
   };
-  const Status status = iterateDistortion(settings.camera, options, Distortion{}, measure, result, record, correct);
-  result.coverage_radius_fraction = coverageRadiusFraction(settings.camera, result.images);
+  const Status status = iterateDistortion(settings.camera(), options, Distortion{}, measure, result, record, correct);
+  result.coverage_radius_fraction = coverageRadiusFraction(settings.camera(), result.images);
   if (ok(status) && result.coverage_radius_fraction < kMinCoverageRadiusFraction)
     return result.status = Status::PoorCoverage;
   return status;

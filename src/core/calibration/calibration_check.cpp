@@ -9,7 +9,7 @@ Status checkCalibrationView(const Settings& settings, const cv::Mat& grey, const
   out.matches.clear();
   out.stats = {};
   if (grey.empty() || grey.type() != CV_8UC1) return out.status = Status::EmptyFrame;
-  const CameraModel& camera = settings.camera;
+  const CameraModel& camera = settings.camera();
   if (grey.cols != camera.width || grey.rows != camera.height) return out.status = Status::FrameSizeMismatch;
   patternSpots(settings.pattern, settings.target, ws.pattern);  // a few thousand spots: cheap beside step 5
   projectPatternSpots(camera, settings.pattern, ws.pattern, pose, ws.ideal);  // step 4

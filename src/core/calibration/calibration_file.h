@@ -1,7 +1,8 @@
 #pragma once
 // The calibration file: what the lens distortion calibration (thesis 4.6) leaves behind for
-// later runs. It is the "camera" section of the settings JSON (docs/conventions.md) carrying the
-// distortion found, so any settings reader takes it (the keys it lacks keep their defaults):
+// later runs. It is the settings JSON (docs/conventions.md) with only the camera of the
+// source in use, carrying the distortion found ({"cameras": {"file": {...}}}), so any
+// settings reader takes it and binds it to that source (the keys it lacks keep their values):
 // `imagepro-cli --config FILE`, the application's Load Settings. Written by the CLI's
 // calibrate command and by the application's calibration wizard.
 #include <string>
@@ -10,7 +11,7 @@
 
 namespace imagepro {
 
-// The file's text: {"camera": {...}} of `settings`, indented, with a final newline.
+// The file's text: {"cameras": {"<settings.source>": {...}}}, indented, with a final newline.
 std::string calibrationFileJson(const Settings& settings);
 
 // Writes calibrationFileJson(settings) to `path` atomically (core/common/atomic_file.h): a file

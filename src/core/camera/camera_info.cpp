@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "core/camera/v4l2_access.h"
+#include "core/settings/enum_names.h"
 #include "core/source/image_file.h"
 
 namespace imagepro {
@@ -250,7 +251,118 @@ Status writeControl(DeviceIo& io, int fd, const CameraControl& control, std::int
   return Status::InvalidSettings;
 }
 
+void readInputsAndStandards(DeviceIo& io, int fd, DeviceInfo& info) {
+  for (std::uint32_t i = 0; i < 64; ++i) {
+    v4l2_input in{};
+    in.index = i;
+    if (xioctl(io, fd, VIDIOC_ENUMINPUT, &in) < 0) break;
+    info.inputs.push_back({in.index, driverText(in.name), in.type == V4L2_INPUT_TYPE_TUNER, in.std});
+  }
+  int current = -1;
+  if (!info.inputs.empty() && xioctl(io, fd, VIDIOC_G_INPUT, &current) == 0) info.current_input = current;
+  for (std::uint32_t i = 0; i < 64; ++i) {
+    v4l2_standard st{};
+    st.index = i;
+    if (xioctl(io, fd, VIDIOC_ENUMSTD, &st) < 0) break;
+    const double rate = st.frameperiod.numerator == 0
+                            ? 0.0
+                            : static_cast<double>(st.frameperiod.denominator) / st.frameperiod.numerator;
+    info.standards.push_back({st.id, driverText(st.name), rate});
+  }
+  v4l2_std_id now = 0;
+  if (!info.standards.empty() && xioctl(io, fd, VIDIOC_G_STD, &now) == 0) info.current_standard = now;
+}
+
 }  // namespace v4l2
+
+std::uint64_t tvStandardMask(TvStandard standard) {
+  switch (standard) {
+    case TvStandard::Keep: return 0;
+    case TvStandard::Pal: return V4L2_STD_PAL;
+    case TvStandard::Ntsc: return V4L2_STD_NTSC;
+    case TvStandard::Secam: return V4L2_STD_SECAM;
+  }
+  return 0;
+}
+
+std::vector<TvStandard> tvStandardsOffered(const DeviceInfo& info, int input) {
+  const int chosen = input >= 0 ? input : info.current_input;
+  std::uint64_t takes = 0;
+  if (chosen >= 0 && static_cast<std::size_t>(chosen) < info.inputs.size())
+    takes = info.inputs[static_cast<std::size_t>(chosen)].standards;
+  else if (info.inputs.empty())
+    for (const VideoStandard& s : info.standards) takes |= s.id;
+  std::vector<TvStandard> offered;
+  for (const TvStandard t : {TvStandard::Pal, TvStandard::Ntsc, TvStandard::Secam})
+    if ((takes & tvStandardMask(t)) != 0) offered.push_back(t);
+  return offered;
+}
+
+namespace {
+
+// "0 Composite0, 1 S-Video".
+std::string inputsText(const std::vector<VideoInput>& inputs) {
+  std::string text;
+  for (const VideoInput& in : inputs) text += (text.empty() ? "" : ", ") + std::to_string(in.index) + " " + in.name;
+  return text;
+}
+
+// "PAL-BG, NTSC-M": the listed standards an input takes.
+std::string standardsText(const std::vector<VideoStandard>& standards, std::uint64_t mask) {
+  std::string text;
+  for (const VideoStandard& s : standards)
+    if ((s.id & mask) != 0) text += (text.empty() ? "" : ", ") + s.name;
+  return text;
+}
+
+// The Status and the words for a refused S_INPUT / S_STD.
+Status selectionFailure(int err, Status refused, const std::string& what, std::string& error) {
+  const bool gone = err == ENODEV || err == EIO;
+  const Status s = gone ? Status::CameraDisconnected : err == EBUSY ? Status::CameraBusy : refused;
+  error = what + ": " + std::string(statusMessage(s)) + " (" + v4l2::errnoText(err) + ")";
+  return s;
+}
+
+}  // namespace
+
+Status selectInputAndStandard(DeviceIo& io, int fd, const std::string& path, int input, TvStandard standard,
+                              std::string& error) {
+  if (input < 0 && standard == TvStandard::Keep) return Status::Ok;
+  DeviceInfo info;
+  v4l2::readInputsAndStandards(io, fd, info);
+  if (input >= 0) {
+    if (static_cast<std::size_t>(input) >= info.inputs.size()) {
+      error = path + ": no input " + std::to_string(input) +
+              (info.inputs.empty() ? " (the device lists no inputs)" : " (its inputs: " + inputsText(info.inputs) + ")");
+      return Status::CameraNoSuchInput;
+    }
+    int index = input;
+    if (v4l2::xioctl(io, fd, VIDIOC_S_INPUT, &index) < 0)
+      return selectionFailure(errno, Status::CameraNoSuchInput, path + ": input " + std::to_string(input), error);
+    info.current_input = input;
+  }
+  if (standard == TvStandard::Keep) return Status::Ok;
+  const std::string name(enumLabel(standard));
+  const bool known_input = info.current_input >= 0 && static_cast<std::size_t>(info.current_input) < info.inputs.size();
+  // An input says which standards it takes; a device without inputs, its list does.
+  std::uint64_t takes = 0;
+  for (const VideoStandard& s : info.standards) takes |= s.id;
+  if (known_input) takes = info.inputs[static_cast<std::size_t>(info.current_input)].standards;
+  const std::string where =
+      known_input ? "input " + std::to_string(info.current_input) + " (" +
+                        info.inputs[static_cast<std::size_t>(info.current_input)].name + ")"
+                  : std::string("the device");
+  v4l2_std_id id = tvStandardMask(standard) & takes;
+  if (id == 0) {
+    const std::string offered = standardsText(info.standards, takes);
+    error = path + ": " + where + " takes no " + name +
+            (offered.empty() ? " (it takes no TV standard)" : " (it takes " + offered + ")");
+    return Status::CameraStandardRefused;
+  }
+  if (v4l2::xioctl(io, fd, VIDIOC_S_STD, &id) < 0)
+    return selectionFailure(errno, Status::CameraStandardRefused, path + ": " + name + " on " + where, error);
+  return Status::Ok;
+}
 
 std::vector<std::string> listVideoDevices(const std::string& folder) {
   std::vector<std::string> paths;
@@ -275,6 +387,7 @@ Status queryDevice(DeviceIo& io, const std::string& path, DeviceInfo& info, std:
   if (ok(s)) {
     if (info.video_capture) v4l2::readFormats(io, fd, info.formats);
     v4l2::readControls(io, fd, info.controls);
+    if (info.video_capture) v4l2::readInputsAndStandards(io, fd, info);
   }
   io.close(fd);
   return s;

@@ -1,7 +1,8 @@
 #pragma once
 // What a V4L2 camera offers (thesis 2.2 and 5.2.1: today's counterpart of the frame
 // grabber): its formats with their frame sizes and frame intervals, its controls
-// (exposure, gain, brightness, focus ...), and the choice of format, size and rate
+// (exposure, gain, brightness, focus ...), a capture card's inputs and TV standards
+// and choosing them, and the choice of format, size and rate
 // closest to a request. Used by the capture source (camera_source.h), by
 // `imagepro-cli devices` and by the GUI's device settings.
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include "core/camera/device_io.h"
 #include "core/camera/pixel_format.h"
 #include "core/common/status.h"
+#include "core/settings/options.h"
 
 namespace imagepro {
 
@@ -71,6 +73,21 @@ struct CameraControl {
   std::vector<ControlMenuItem> menu;  // Menu and IntegerMenu
 };
 
+// One input of a capture card (VIDIOC_ENUMINPUT): "Composite0", "S-Video" ...
+struct VideoInput {
+  std::uint32_t index = 0;
+  std::string name;
+  bool tuner = false;           // a TV tuner's input rather than a camera's or a socket's
+  std::uint64_t standards = 0;  // the TV standards it takes (a V4L2 standard mask; 0: none)
+};
+
+// One TV standard a capture card offers (VIDIOC_ENUMSTD): "PAL-BG", "NTSC-M" ...
+struct VideoStandard {
+  std::uint64_t id = 0;  // its V4L2 standard mask
+  std::string name;
+  double frame_rate_hz = 0.0;
+};
+
 struct DeviceInfo {
   std::string path;
   std::string card;    // product name
@@ -80,6 +97,12 @@ struct DeviceInfo {
   bool streaming = false;      // memory-mapped streaming offered
   std::vector<FormatInfo> formats;
   std::vector<CameraControl> controls;
+  // A capture card's inputs and TV standards; empty for a device without them (most
+  // USB cameras have one input and no standard).
+  std::vector<VideoInput> inputs;
+  int current_input = -1;  // -1: the device does not say
+  std::vector<VideoStandard> standards;
+  std::uint64_t current_standard = 0;  // 0: none, or the device does not say
 };
 
 // The V4L2 device nodes /dev/video* of `folder` in natural order ("video2" before
@@ -96,6 +119,21 @@ Status queryDevice(DeviceIo& io, const std::string& path, DeviceInfo& info, std:
 // in any case. InvalidSettings names an unknown control or a value out of its range.
 Status setDeviceControl(DeviceIo& io, const std::string& path, const std::string& key, std::int64_t value,
                         std::string& error);
+
+// The V4L2 standard mask of a TV standard group (0 for Keep).
+std::uint64_t tvStandardMask(TvStandard standard);
+// The groups (PAL, NTSC, SECAM), in that order, that input `input` takes (-1: the
+// current one); for a device without inputs, those its listed standards fall into.
+// Empty for a device or an input without standards.
+std::vector<TvStandard> tvStandardsOffered(const DeviceInfo& info, int input = -1);
+
+// Makes input `input` (-1: leave it) and then `standard` (Keep: leave it) the device's,
+// the order a capture card needs (the standards are an input's). CameraNoSuchInput
+// when the device has no input of that number (`error` lists those it has),
+// CameraStandardRefused when the input does not take the standard (`error` names what
+// it takes), CameraDisconnected for a vanished device.
+Status selectInputAndStandard(DeviceIo& io, int fd, const std::string& path, int input, TvStandard standard,
+                              std::string& error);
 
 // "Exposure Time, Absolute" -> "exposure_time_absolute".
 std::string controlKey(const std::string& name);

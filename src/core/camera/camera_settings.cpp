@@ -9,9 +9,12 @@ CameraRequest cameraRequest(const Settings& settings) {
   CameraRequest request;
   request.device = o.device;
   const bool own_size = o.width > 0 && o.height > 0;
-  request.width = own_size ? o.width : settings.camera.width;
-  request.height = own_size ? o.height : settings.camera.height;
+  const CameraModel& model = settings.camera(SourceKind::Camera);
+  request.width = own_size ? o.width : model.width;
+  request.height = own_size ? o.height : model.height;
   request.frame_rate_hz = o.frame_rate_hz;
+  request.input = o.input;
+  request.standard = o.standard;
   return request;
 }
 

@@ -13,8 +13,8 @@
 
 namespace imagepro {
 
-// camera_source's device and rate; its size, or the camera model's (camera.width x
-// camera.height) when camera_source leaves it at 0.
+// camera_source's device, rate, input and standard; its size, or the Camera source's
+// camera model's (cameras.camera.width x height) when camera_source leaves it at 0.
 CameraRequest cameraRequest(const Settings& settings);
 
 // Sets one control, named by its key (or its name in any case), on `camera`, streaming

@@ -121,6 +121,10 @@ Status CameraSource::openAndNegotiate() {
   if (!info.streaming)
     return fail(Status::CameraNoSupportedFormat, dev + ": the driver offers no memory-mapped streaming");
 
+  // A capture card's input and standard first: the sizes and rates it offers follow from them.
+  s = selectInputAndStandard(io_, fd_, dev, request_.input, request_.standard, err);
+  if (!ok(s)) return fail(s, err);
+
   std::vector<FormatInfo> formats;
   v4l2::readFormats(io_, fd_, formats);
   CaptureChoice choice;

@@ -26,6 +26,8 @@ struct CameraRequest {
   int width = 0;                 // 0 x 0: the largest size that reaches the rate
   int height = 0;
   double frame_rate_hz = 25.0;   // thesis 5.2.1; 0 leaves the driver's rate
+  int input = -1;                // a capture card's input, set before the format; -1 leaves the device's
+  TvStandard standard = TvStandard::Keep;  // the input's TV standard; Keep leaves the device's
   int buffers = 4;               // driver buffers in the streaming queue (2..32)
   int timeout_ms = 2000;         // longest wait for one frame before CameraTimeout
 };
@@ -69,8 +71,9 @@ class CameraSource final : public FrameSource {
   CameraSource(const CameraSource&) = delete;
   CameraSource& operator=(const CameraSource&) = delete;
 
-  // Opens the device, negotiates, maps the buffers and starts streaming. Errors:
-  // CameraNotFound, CameraPermissionDenied, CameraBusy, CameraNoSupportedFormat,
+  // Opens the device, selects the input and the standard, negotiates, maps the buffers
+  // and starts streaming. Errors: CameraNotFound, CameraPermissionDenied, CameraBusy,
+  // CameraNoSuchInput, CameraStandardRefused, CameraNoSupportedFormat,
   // CameraFormatRefused, with lastError() naming the device and the reason.
   Status start();
   // Stops streaming and closes the device (nothing happens when it is not open).

@@ -30,6 +30,10 @@ Status readCapabilities(DeviceIo& io, int fd, DeviceInfo& info, std::string& err
 // Every capture format with its sizes and frame intervals.
 void readFormats(DeviceIo& io, int fd, std::vector<FormatInfo>& formats);
 
+// The inputs (VIDIOC_ENUMINPUT) and TV standards (VIDIOC_ENUMSTD) with the current ones;
+// nothing for a device that lists none.
+void readInputsAndStandards(DeviceIo& io, int fd, DeviceInfo& info);
+
 // Every enabled control with its current value (control-class headings skipped).
 void readControls(DeviceIo& io, int fd, std::vector<CameraControl>& controls);
 

@@ -49,6 +49,8 @@ StatusText text(Status s) {
     case Status::CameraBusy: return {"CameraBusy", "the camera is in use by another program"};
     case Status::CameraNoSupportedFormat: return {"CameraNoSupportedFormat", "the camera offers no pixel format ImagePro can read"};
     case Status::CameraFormatRefused: return {"CameraFormatRefused", "the camera refused the requested format"};
+    case Status::CameraNoSuchInput: return {"CameraNoSuchInput", "the capture card has no input of that number"};
+    case Status::CameraStandardRefused: return {"CameraStandardRefused", "the capture card's input does not take that TV standard"};
     case Status::CameraTimeout: return {"CameraTimeout", "the camera delivered no frame in time"};
     case Status::CameraDisconnected: return {"CameraDisconnected", "the camera vanished while streaming"};
     case Status::InvalidSettings: return {"InvalidSettings", "the settings are invalid"};

@@ -46,6 +46,8 @@ enum class Status : std::uint8_t {
   CameraBusy,
   CameraNoSupportedFormat,
   CameraFormatRefused,
+  CameraNoSuchInput,      // the capture card has no input of the number asked for
+  CameraStandardRefused,  // the card's input does not take the TV standard asked for
   CameraTimeout,
   CameraDisconnected,
   // settings / calibration

@@ -91,7 +91,7 @@ void Engine::Impl::run(FrameResult& out) {
       tracker.reset();
       last_pose.reset();
     }
-    if (stream) region = tracker.estimate(o.tracking, settings.camera, settings.target, t, grey.size()).value_or(region);
+    if (stream) region = tracker.estimate(o.tracking, settings.camera(), settings.target, t, grey.size()).value_or(region);
   }
   runStageChain(settings, grey, region, TargetsToReconstruct::Best, chain, out, last_pose ? &*last_pose : nullptr);
   last_pose = out.pose;

@@ -12,7 +12,7 @@
 namespace imagepro {
 
 ReconstructionConfig reconstructionConfig(const Settings& settings) {
-  return {settings.camera, settings.target, settings.pipeline.rethreshold,
+  return {settings.camera(), settings.target, settings.pipeline.rethreshold,
           settings.pipeline.reconstruction};
 }
 

@@ -117,6 +117,15 @@ constexpr EnumEntry<StreamFormat> kStreamFormat[] = {
     {StreamFormat::OpenTrack, "opentrack", "OpenTrack",
      "OpenTrack's \"UDP over network\" input: x, y, z in cm and yaw, pitch, roll in degrees as six little-endian "
      "doubles, frames with a pose only"}};
+constexpr EnumEntry<SourceKind> kSource[] = {
+    {SourceKind::File, "file", "File", "still images or a video file (thesis 2.2)"},
+    {SourceKind::Camera, "camera", "Camera", "a V4L2 camera or capture card, frame by frame (thesis 2.2)"},
+    {SourceKind::Virtual, "virtual", "Virtual", "the virtual perspective projection of the target (thesis 2.2)"}};
+constexpr EnumEntry<TvStandard> kTvStandard[] = {
+    {TvStandard::Keep, "keep", "Keep", "the standard the device has, not set"},
+    {TvStandard::Pal, "pal", "PAL", "PAL, 625 lines at 25 frames/s"},
+    {TvStandard::Ntsc, "ntsc", "NTSC", "NTSC, 525 lines at 29.97 frames/s"},
+    {TvStandard::Secam, "secam", "SECAM", "SECAM, 625 lines at 25 frames/s"}};
 }  // namespace
 
 std::span<const EnumEntry<ThresholdMethod>> enumEntries(ThresholdMethod) { return kThreshold; }
@@ -135,5 +144,7 @@ std::span<const EnumEntry<RenderMode>> enumEntries(RenderMode) { return kRender;
 std::span<const EnumEntry<MotionKind>> enumEntries(MotionKind) { return kMotion; }
 std::span<const EnumEntry<PoseAxis>> enumEntries(PoseAxis) { return kAxis; }
 std::span<const EnumEntry<StreamFormat>> enumEntries(StreamFormat) { return kStreamFormat; }
+std::span<const EnumEntry<SourceKind>> enumEntries(SourceKind) { return kSource; }
+std::span<const EnumEntry<TvStandard>> enumEntries(TvStandard) { return kTvStandard; }
 
 }  // namespace imagepro

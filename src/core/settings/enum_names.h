@@ -36,6 +36,8 @@ std::span<const EnumEntry<RenderMode>> enumEntries(RenderMode);
 std::span<const EnumEntry<MotionKind>> enumEntries(MotionKind);
 std::span<const EnumEntry<PoseAxis>> enumEntries(PoseAxis);
 std::span<const EnumEntry<StreamFormat>> enumEntries(StreamFormat);
+std::span<const EnumEntry<SourceKind>> enumEntries(SourceKind);
+std::span<const EnumEntry<TvStandard>> enumEntries(TvStandard);
 
 // The value's row of its table; nullptr for a value outside it (a cast integer).
 template <class E>

@@ -209,6 +209,12 @@ struct PipelineOptions {
 
 namespace imagepro {
 
+// The input sources of thesis 2.2 (the Input Source panel of appendix A). Each has its
+// own camera model in the settings (thesis A.3: the image plane, the principal point,
+// the pixel size and the distortion "corresponding to the input sources").
+enum class SourceKind : std::uint8_t { File, Camera, Virtual };
+inline constexpr std::array<SourceKind, 3> kSourceKinds{SourceKind::File, SourceKind::Camera, SourceKind::Virtual};
+
 // The Virtual perspective projection source (thesis 2.2): how the target is drawn
 // and how it moves. "Settings" menu of appendix A: virtual velocities.
 enum class RenderMode : std::uint8_t {
@@ -261,13 +267,21 @@ struct VirtualSceneOptions {
   double key_step_deg = 1.0;
 };
 
+// The analogue TV standard a capture card (a composite or S-Video frame grabber like the
+// thesis's PXC200) digitizes its input by; each group stands for all its variants
+// (PAL-B, PAL-D ...), of which the driver picks.
+enum class TvStandard : std::uint8_t { Keep, Pal, Ntsc, Secam };
+
 // The Camera source (thesis 2.2: the frame grabber, here a V4L2 device): which device,
-// at which size and rate, and the device controls set after opening it.
+// at which size and rate, which of a capture card's inputs in which TV standard, and
+// the device controls set after opening it.
 struct CameraSourceOptions {
   std::string device = "/dev/video0";
-  int width = 0;   // 0 (width or height): the camera model's size, camera.width x camera.height
+  int width = 0;   // 0 (width or height): the Camera source's camera model's size
   int height = 0;
   double frame_rate_hz = 25.0;  // thesis 5.2.1; 0: the driver's own rate
+  int input = -1;               // the card's input (imagepro-cli devices numbers them); -1: the device's
+  TvStandard standard = TvStandard::Keep;
   std::map<std::string, std::int64_t> controls;  // control key (imagepro-cli devices) -> value
 };
 

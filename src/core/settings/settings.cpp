@@ -35,23 +35,29 @@ void poseGroup(Visitor& v, const char* key, Pose& p, const std::array<const char
   });
 }
 
+// The keys of one camera model: a source's in "cameras", and an older file's one "camera".
+template <class Visitor>
+void visitCamera(Visitor& v, CameraModel& c) {
+  v.field("width", c.width, 1, static_cast<int>(kMaxImageSide));
+  v.field("height", c.height, 1, static_cast<int>(kMaxImageSide));
+  v.field("pixel_size_mm", c.pixel_size_mm, 1e-9, kInf);
+  v.field("image_plane_distance_mm", c.image_plane_distance_mm, 1e-9, kInf);
+  v.field("principal_point_px", c.principal_point_px, -kInf, kInf);
+  v.object("distortion", [&] {
+    v.field("k1", c.distortion.k1, -kInf, kInf);
+    v.field("k2", c.distortion.k2, -kInf, kInf);
+    v.field("p1", c.distortion.p1, -kInf, kInf);
+    v.field("p2", c.distortion.p2, -kInf, kInf);
+  });
+}
+
 // Walks every key of the settings once. The same walk reads and writes, so a key,
 // its place in the document and its valid range are written down exactly once.
 template <class Visitor>
 void visitSettings(Visitor& v, Settings& s) {
-  v.object("camera", [&] {
-    CameraModel& c = s.camera;
-    v.field("width", c.width, 1, static_cast<int>(kMaxImageSide));
-    v.field("height", c.height, 1, static_cast<int>(kMaxImageSide));
-    v.field("pixel_size_mm", c.pixel_size_mm, 1e-9, kInf);
-    v.field("image_plane_distance_mm", c.image_plane_distance_mm, 1e-9, kInf);
-    v.field("principal_point_px", c.principal_point_px, -kInf, kInf);
-    v.object("distortion", [&] {
-      v.field("k1", c.distortion.k1, -kInf, kInf);
-      v.field("k2", c.distortion.k2, -kInf, kInf);
-      v.field("p1", c.distortion.p1, -kInf, kInf);
-      v.field("p2", c.distortion.p2, -kInf, kInf);
-    });
+  v.object("cameras", [&] {
+    for (const SourceKind k : kSourceKinds)
+      v.object(std::string(enumName(k)).c_str(), [&] { visitCamera(v, s.camera(k)); });
   });
   v.object("target", [&] {
     v.field("radius_mm", s.target.radius_mm, 1e-9, kInf);
@@ -113,6 +119,8 @@ void visitSettings(Visitor& v, Settings& s) {
     v.field("width", o.width, 0, static_cast<int>(kMaxImageSide));
     v.field("height", o.height, 0, static_cast<int>(kMaxImageSide));
     v.field("frame_rate_hz", o.frame_rate_hz, 0.0, 1e6);
+    v.field("input", o.input, -1, 255);
+    v.field("standard", o.standard);
     v.field("controls", o.controls);
   });
   v.object("stream", [&] {
@@ -388,7 +396,7 @@ class Writer {
 };
 
 // Finds where in the document parsing stopped: a second, SAX pass that keeps the key
-// path ("camera.principal_point_px[1]") of the value being read when the error comes.
+// path ("cameras.file.principal_point_px[1]") of the value being read when the error comes.
 class ErrorLocator {
  public:
   using string_t = json::string_t;
@@ -572,11 +580,23 @@ Status settingsFromJson(std::string_view json_text, Settings& out, std::string& 
   Settings parsed = out;
   try {
     Reader reader(root);
+    // An older file's one camera is every source's; "cameras", read next, may still give
+    // a source its own.
+    const bool one_camera = root.contains("camera");
+    if (one_camera)
+      for (const SourceKind k : kSourceKinds) reader.object("camera", [&] { visitCamera(reader, parsed.camera(k)); });
     visitSettings(reader, parsed);
     reader.finishObject();
     // Each side is bounded by its key; together they may still be more than a frame can hold.
-    if (const std::string problem = imageSizeProblem(parsed.camera.width, parsed.camera.height); !problem.empty())
-      throw SettingsKeyError("camera.width, camera.height: " + problem);
+    for (const SourceKind k : kSourceKinds) {
+      const CameraModel& c = parsed.camera(k);
+      const std::string name(enumName(k));
+      const auto own = root.find("cameras");
+      const bool own_entry = own != root.end() && own->contains(name);
+      const std::string at = one_camera && !own_entry ? std::string("camera") : "cameras." + name;
+      if (const std::string problem = imageSizeProblem(c.width, c.height); !problem.empty())
+        throw SettingsKeyError(at + ".width, " + at + ".height: " + problem);
+    }
   } catch (const SettingsKeyError& e) {
     error = e.what();
     return Status::InvalidSettings;

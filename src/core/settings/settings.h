@@ -1,9 +1,11 @@
 #pragma once
-// The settings file (docs/conventions.md): one JSON document with the camera, the
-// target, the calibration pattern, the virtual scene, the live pose stream and every
-// pipeline option.
+// The settings file (docs/conventions.md): one JSON document with each source's camera
+// model, the target, the calibration pattern, the virtual scene, the live pose stream
+// and every pipeline option.
 // Unknown keys and wrong types are errors naming the key; a missing key keeps its
-// default; saving is atomic, so a failed save never damages the old file.
+// default; saving is atomic, so a failed save never damages the old file. An older
+// file's one "camera" is read as the camera of every source.
+#include <array>
 #include <string>
 #include <string_view>
 #include <typeindex>
@@ -16,13 +18,23 @@
 namespace imagepro {
 
 struct Settings {
-  CameraModel camera;
+  // Each source's camera model, in kSourceKinds' order ("cameras" in the file).
+  std::array<CameraModel, kSourceKinds.size()> cameras;
+  // The source whose frames are processed, which picks camera(). Not in the file: whoever
+  // runs a source sets it (the application's Input Source panel, the command line's input).
+  SourceKind source = SourceKind::Virtual;
   TargetGeometry target;
   PatternGeometry pattern;
   VirtualSceneOptions virtual_scene;
   CameraSourceOptions camera_source;
   StreamOptions stream;
   PipelineOptions pipeline;
+
+  CameraModel& camera(SourceKind kind) { return cameras[static_cast<std::size_t>(kind)]; }
+  const CameraModel& camera(SourceKind kind) const { return cameras[static_cast<std::size_t>(kind)]; }
+  // The camera of the source in use: the one the pipeline reconstructs with.
+  CameraModel& camera() { return camera(source); }
+  const CameraModel& camera() const { return camera(source); }
 };
 
 // Parses JSON text over the defaults. On failure returns InvalidSettings, leaves
@@ -41,7 +53,7 @@ struct SettingKey {
   struct Choice {
     std::string_view key, label, description;  // the enum table's row (enum_names.h)
   };
-  std::string path;  // "pipeline.ellipse.trace_inlier_px", "camera.principal_point_px[1]"
+  std::string path;  // "pipeline.ellipse.trace_inlier_px", "cameras.file.principal_point_px[1]"
   Type type = Type::Number;
   double lo = 0.0, hi = 0.0;              // Number, WholeNumber: valid from lo to hi, both included
   std::type_index choice = typeid(void);  // Choice: the option enum

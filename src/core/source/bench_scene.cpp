@@ -10,10 +10,10 @@ namespace imagepro {
 Settings benchSceneSettings(cv::Size size) {
   Settings s;
   const double scale = size.width / 640.0;
-  s.camera.width = size.width;
-  s.camera.height = size.height;
-  s.camera.pixel_size_mm = {0.01 / scale, 0.01 / scale};
-  s.camera.principal_point_px = {(size.width - 1) / 2.0, (size.height - 1) / 2.0};
+  s.camera().width = size.width;
+  s.camera().height = size.height;
+  s.camera().pixel_size_mm = {0.01 / scale, 0.01 / scale};
+  s.camera().principal_point_px = {(size.width - 1) / 2.0, (size.height - 1) / 2.0};
   VirtualSceneOptions& v = s.virtual_scene;
   v.mode = RenderMode::Grey;
   v.clutter = 8;
@@ -48,7 +48,7 @@ Frame renderCleanBenchFrame(const Settings& scene, int index) {
   f.index = index;
   f.timestamp_s = index / scene.virtual_scene.frame_rate_hz;
   f.truth = virtualPoseAt(scene.virtual_scene, f.timestamp_s);
-  renderTarget(scene.camera, scene.target, clean, *f.truth, f.image, static_cast<std::uint64_t>(index));
+  renderTarget(scene.camera(), scene.target, clean, *f.truth, f.image, static_cast<std::uint64_t>(index));
   return f;
 }
 

@@ -25,7 +25,7 @@ struct StillDraw {
 };
 
 Pose randomStillPose(const Settings& s, SceneRandom& random) {
-  const CameraModel& cam = s.camera;
+  const CameraModel& cam = s.camera();
   const double card = s.virtual_scene.card_size_mm;
   const double distance = random.uniform(RealScenes::kMinDistanceMm, RealScenes::kMaxDistanceMm);
   const double tilt = random.uniform(0.0, RealScenes::kMaxTiltDeg);
@@ -146,7 +146,7 @@ bool RealScenes::background(const std::string& path, double zoom, double fx, dou
                             std::string& error) const {
   cv::Mat photo;
   if (!cache_.load(path, photo, error)) return false;
-  out = fitBackground(photo, cv::Size(settings_.camera.width, settings_.camera.height), zoom, fx, fy);
+  out = fitBackground(photo, cv::Size(settings_.camera().width, settings_.camera().height), zoom, fx, fy);
   return true;
 }
 
@@ -155,7 +155,7 @@ void RealScenes::paint(const ScenePainter& painter, const cv::Mat& background, c
   if (painter)
     painter(background, pose, look, scene);
   else
-    composeTarget(background, settings_.camera, settings_.target, look, pose, scene);
+    composeTarget(background, settings_.camera(), settings_.target, look, pose, scene);
 }
 
 bool RealScenes::still(std::uint64_t seed, std::int64_t index, bool with_target, RealSceneFrame& out,

@@ -26,7 +26,7 @@ RealSceneVideo::RealSceneVideo(const RealScenes& scenes, std::uint64_t seed, int
 
 Pose RealSceneVideo::poseAt(int index) const {
   const Settings& s = scenes_.settings();
-  const CameraModel& cam = s.camera;
+  const CameraModel& cam = s.camera();
   const double t = index / kFrameRateHz;
   // Incommensurate periods (seconds), so the path does not repeat within a video.
   const double distance = 900.0 + 500.0 * std::sin(kTwoPi * t / 6.1 + phase_[0]);

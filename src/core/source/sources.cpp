@@ -77,10 +77,12 @@ Status VirtualSource::next(Frame& out) {
   const VirtualSceneOptions& scene = settings.virtual_scene;
   const Pose pose = framePose(scene, offset, index);
   const auto seed = static_cast<std::uint64_t>(index);
+  // Its own camera, whichever source the settings say is in use.
+  const CameraModel& camera = settings.camera(SourceKind::Virtual);
   if (content == VirtualContent::Pattern)
-    renderPattern(settings.camera, settings.target, settings.pattern, scene, pose, out.image, seed);
+    renderPattern(camera, settings.target, settings.pattern, scene, pose, out.image, seed);
   else
-    renderTarget(settings.camera, settings.target, scene, pose, out.image, seed);
+    renderTarget(camera, settings.target, scene, pose, out.image, seed);
   out.index = index;
   out.timestamp_s = static_cast<double>(index) / scene.frame_rate_hz;
   out.name.clear();

@@ -459,13 +459,13 @@ void AnalysisWindowTest::liveTwoTargetsFromImageFiles() {
   // Pictures of the two-target object played as the main window's File input: the
   // frames it shows are measured on the analysis thread, both targets of each.
   Settings s;
-  s.camera.distortion = kThesisCameraDistortion;
+  s.camera().distortion = kThesisCameraDistortion;
   s.virtual_scene.noise_sigma = 2.0;
   const QString dir = scratchDir(QStringLiteral("analysis-two-target-images"));
   TwoTargetRenderWorkspace ws;
   cv::Mat image;
   for (int i = 0; i < 3; ++i) {
-    renderTwoTargets(s.camera, s.target, s.virtual_scene, TwoTargetObject{}, twoTargetStudyPosition(1), image,
+    renderTwoTargets(s.camera(), s.target, s.virtual_scene, TwoTargetObject{}, twoTargetStudyPosition(1), image,
                      static_cast<std::uint64_t>(i), ws);
     QVERIFY(cv::imwrite(QStringLiteral("%1/object%2.png").arg(dir).arg(i).toStdString(), image));
   }

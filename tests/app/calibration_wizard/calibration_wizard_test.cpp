@@ -60,7 +60,7 @@ void CalibrationWizardTest::recoversTheLensFromVirtualPatternImages() {
   MainWindow& w = *window_;
   // The Virtual source renders through the settings' lens: the thesis camera's.
   Settings lens = w.settings();
-  lens.camera.distortion = kThesisCameraDistortion;
+  lens.camera().distortion = kThesisCameraDistortion;
   w.setSettings(lens);
   CalibrationWizard& wizard = showCalibrationWizard(w);
   QVERIFY(renderAll(wizard));
@@ -79,7 +79,7 @@ void CalibrationWizardTest::recoversTheLensFromVirtualPatternImages() {
   // The calibration starts from zero whatever the settings hold; the settings then start
   // without distortion and correction, so that Set and Use has something to change.
   Settings plain = w.settings();
-  plain.camera.distortion = {};
+  plain.camera().distortion = {};
   plain.pipeline.reconstruction.distortion_correction = false;
   w.setSettings(plain);
 
@@ -127,7 +127,7 @@ void CalibrationWizardTest::recoversTheLensFromVirtualPatternImages() {
   QVERIFY2(relativeError(d.k2, t.k2) < 0.03, qPrintable(QString::number(d.k2)));
   QVERIFY2(relativeError(d.p1, t.p1) < 0.015, qPrintable(QString::number(d.p1)));
   QVERIFY2(relativeError(d.p2, t.p2) < 0.015, qPrintable(QString::number(d.p2)));
-  const CameraModel& camera = w.settings().camera;
+  const CameraModel& camera = w.settings().camera();
   QVERIFY(compareDistortionFields(camera, d, t).rms_px < 0.01);
 
   // The field view: the displacement found, its largest value stated (16.23 px at the
@@ -148,16 +148,22 @@ void CalibrationWizardTest::recoversTheLensFromVirtualPatternImages() {
     wizard.findChild<QSpinBox*>(QStringLiteral("matchLineScale"))->setValue(1);
   }
 
-  // Set and Use: the settings' camera takes the distortion and correction goes on; the
-  // worker runs with it, and the Settings dialog shows it.
+  // Set and Use: the camera of the source in use takes the distortion (here File: the
+  // pattern's images as opened files), the other sources keep theirs, and correction goes
+  // on; the worker runs with it, and the Settings dialog shows it.
+  w.selectSource(SourceKind::File);
   wizard.findChild<QPushButton*>(QStringLiteral("setAndUse"))->click();
-  QCOMPARE(w.settings().camera.distortion.k1, d.k1);
-  QCOMPARE(w.settings().camera.distortion.k2, d.k2);
-  QCOMPARE(w.settings().camera.distortion.p1, d.p1);
-  QCOMPARE(w.settings().camera.distortion.p2, d.p2);
+  QCOMPARE(w.settings().source, SourceKind::File);
+  QVERIFY2(wizard.runStatus().contains(QStringLiteral("the File source's camera")), qPrintable(wizard.runStatus()));
+  QCOMPARE(w.settings().camera(SourceKind::Virtual).distortion.k1, 0.0);
+  QCOMPARE(w.settings().camera(SourceKind::Camera).distortion.k1, 0.0);
+  QCOMPARE(w.settings().camera().distortion.k1, d.k1);
+  QCOMPARE(w.settings().camera().distortion.k2, d.k2);
+  QCOMPARE(w.settings().camera().distortion.p1, d.p1);
+  QCOMPARE(w.settings().camera().distortion.p2, d.p2);
   QVERIFY(w.settings().pipeline.reconstruction.distortion_correction);
   QVERIFY(waitForApplied(w, [&](const Settings& s) {
-    return s.camera.distortion.k1 == d.k1 && s.pipeline.reconstruction.distortion_correction;
+    return s.camera().distortion.k1 == d.k1 && s.pipeline.reconstruction.distortion_correction;
   }));
   QAction* settings_action = menuAction(w, QStringLiteral("Se&ttings..."));
   QVERIFY(settings_action);
@@ -176,8 +182,9 @@ void CalibrationWizardTest::recoversTheLensFromVirtualPatternImages() {
   Settings loaded;
   std::string error;
   QVERIFY2(ok(loadSettings(file.toStdString(), loaded, error)), error.c_str());
-  QCOMPARE(loaded.camera.distortion.k1, d.k1);
-  QCOMPARE(loaded.camera.distortion.p2, d.p2);
+  QCOMPARE(loaded.camera(SourceKind::File).distortion.k1, d.k1);  // the file binds it to File alone
+  QCOMPARE(loaded.camera(SourceKind::File).distortion.p2, d.p2);
+  QCOMPARE(loaded.camera(SourceKind::Camera).distortion.k1, 0.0);
   QVERIFY(!wizard.saveCalibration(dir + QStringLiteral("/no/such/folder/camera.json")));
   QVERIFY(wizard.runStatus().contains(QStringLiteral("camera.json")));
   QVERIFY(QFile::exists(file));
@@ -231,9 +238,9 @@ void CalibrationWizardTest::problemsAreNamedPerImageAndForTheRun() {
   QVERIFY2(wizard.runStatus().contains(QStringLiteral("Calibration failed: TooFewMatches")),
            qPrintable(wizard.runStatus()));
   QVERIFY(!wizard.findChild<QPushButton*>(QStringLiteral("setAndUse"))->isEnabled());
-  const Distortion before = w.settings().camera.distortion;
+  const Distortion before = w.settings().camera().distortion;
   wizard.setAndUse();
-  QCOMPARE(w.settings().camera.distortion.k1, before.k1);
+  QCOMPARE(w.settings().camera().distortion.k1, before.k1);
   QVERIFY(wizard.slotStatus(2).contains(QStringLiteral("Left out of the calibration: TooFewMatches")));
 }
 
@@ -243,7 +250,7 @@ void CalibrationWizardTest::problemsAreNamedPerImageAndForTheRun() {
 void CalibrationWizardTest::aPatternTooSmallForTheImageIsRefused() {
   MainWindow& w = *window_;
   Settings small_sheet = w.settings();
-  small_sheet.camera.distortion = kThesisCameraDistortion;
+  small_sheet.camera().distortion = kThesisCameraDistortion;
   small_sheet.pattern.columns = 11;
   small_sheet.pattern.rows = 7;
   w.setSettings(small_sheet);

@@ -33,7 +33,7 @@ double focalLength(double d0, double z) { return d0 * z / (d0 + z); }
 void D0DialogTest::init() {
   window_ = std::make_unique<MainWindow>();
   Settings s;
-  s.camera.image_plane_distance_mm = kTrueD0;
+  s.camera().image_plane_distance_mm = kTrueD0;
   s.virtual_scene.frame_rate_hz = 50.0;
   window_->setSettings(s);
   window_->show();
@@ -53,12 +53,12 @@ void D0DialogTest::virtualFramesGiveTheirKnownD0() {
   // A second view of the same lens from a file, turned otherwise.
   Settings rendering = w.settings();
   cv::Mat image;
-  renderTarget(rendering.camera, rendering.target, rendering.virtual_scene, Pose{-25, 10, 120, -60, 40, kDistance},
+  renderTarget(rendering.camera(), rendering.target, rendering.virtual_scene, Pose{-25, 10, 120, -60, 40, kDistance},
                image);
   const QString path = scratchDir(QStringLiteral("d0_dialog")) + QStringLiteral("/target.png");
   QVERIFY(cv::imwrite(path.toStdString(), image));
   // The settings' own d0 is not what is estimated: put a wrong one in first.
-  rendering.camera.image_plane_distance_mm = 8.0;
+  rendering.camera().image_plane_distance_mm = 8.0;
   w.setSettings(rendering);
   QVERIFY(dialog->openImage(path));
   QCOMPARE(dialog->entries().size(), size_t(2));
@@ -106,8 +106,8 @@ void D0DialogTest::virtualFramesGiveTheirKnownD0() {
 
   // Set d0: the settings' camera takes the mean.
   dialog->findChild<QPushButton*>(QStringLiteral("d0Set"))->click();
-  QVERIFY(std::abs(w.settings().camera.image_plane_distance_mm - kTrueD0) < 2e-3);
-  QVERIFY(waitForApplied(w, [](const Settings& s) { return std::abs(s.camera.image_plane_distance_mm - kTrueD0) < 2e-3; }));
+  QVERIFY(std::abs(w.settings().camera().image_plane_distance_mm - kTrueD0) < 2e-3);
+  QVERIFY(waitForApplied(w, [](const Settings& s) { return std::abs(s.camera().image_plane_distance_mm - kTrueD0) < 2e-3; }));
   dialog->clearFrames();
   QVERIFY(dialog->entries().empty());
   QVERIFY(!dialog->findChild<QPushButton*>(QStringLiteral("d0Set"))->isEnabled());

@@ -168,7 +168,7 @@ void CalibrationWizardTest::intrinsicModeRecoversTheCamera() {
   auto* set_and_use = page.findChild<QPushButton*>(QStringLiteral("setAndUseIntrinsics"));
   QVERIFY(set_and_use->isEnabled());
   set_and_use->click();
-  const CameraModel& used = w.settings().camera;
+  const CameraModel& used = w.settings().camera();
   QVERIFY(std::abs(used.fu() - r->fx) < 1e-6 * r->fx);
   QVERIFY(std::abs(used.fv() - r->fy) < 1e-6 * r->fy);
   QVERIFY(std::abs(used.u0() - r->cx) < 1e-9 && std::abs(used.v0() - r->cy) < 1e-9);
@@ -180,7 +180,7 @@ void CalibrationWizardTest::intrinsicModeRecoversTheCamera() {
   Settings loaded;
   std::string error;
   QVERIFY2(ok(loadSettings((dir + QStringLiteral("/camera.json")).toStdString(), loaded, error)), error.c_str());
-  QCOMPARE(loaded.camera.principal_point_px[0], used.principal_point_px[0]);
+  QCOMPARE(loaded.camera().principal_point_px[0], used.principal_point_px[0]);
 
   // OpenCV's camera file: written from the result, read back the same; imported into settings
   // that had another camera, it gives this one again.
@@ -193,12 +193,12 @@ void CalibrationWizardTest::intrinsicModeRecoversTheCamera() {
   QVERIFY(std::abs(back.camera_matrix(1, 2) - r->cy) < 1e-6);
   QVERIFY(std::abs(back.distortion[0] - r->opencv_dist[0]) < 1e-9);
   Settings other = w.settings();
-  other.camera = CameraModel{};
+  other.camera() = CameraModel{};
   other.pipeline.reconstruction.distortion_correction = false;
   w.setSettings(other);
   QVERIFY(page.importOpenCvCamera(yaml));
-  QVERIFY(std::abs(w.settings().camera.fu() - r->fx) < 1e-6 * r->fx);
-  QVERIFY(std::abs(w.settings().camera.u0() - r->cx) < 1e-6);
+  QVERIFY(std::abs(w.settings().camera().fu() - r->fx) < 1e-6 * r->fx);
+  QVERIFY(std::abs(w.settings().camera().u0() - r->cx) < 1e-6);
   QVERIFY(w.settings().pipeline.reconstruction.distortion_correction);
   QVERIFY2(page.runStatus().startsWith(QStringLiteral("Imported camera.yaml")), qPrintable(page.runStatus()));
 
@@ -277,16 +277,16 @@ void CalibrationWizardTest::intrinsicModeNamesBadInput() {
   }
   page.addImage(blank, QStringLiteral("blank 4"));
   QVERIFY(!page.findChild<QPushButton*>(QStringLiteral("setAndUseIntrinsics"))->isEnabled());
-  const CameraModel before = w.settings().camera;
+  const CameraModel before = w.settings().camera();
   page.setAndUse();
   QVERIFY(!page.saveCalibration(dir + QStringLiteral("/camera.json")));
-  QCOMPARE(w.settings().camera.image_plane_distance_mm, before.image_plane_distance_mm);
+  QCOMPARE(w.settings().camera().image_plane_distance_mm, before.image_plane_distance_mm);
 
   // A camera file that is missing or not OpenCV's.
   QVERIFY(!page.importOpenCvCamera(dir + QStringLiteral("/none.yaml")));
   QVERIFY2(page.runStatus().startsWith(QStringLiteral("Not imported")), qPrintable(page.runStatus()));
   QVERIFY(!page.importOpenCvCamera(broken.fileName()));
-  QCOMPARE(w.settings().camera.image_plane_distance_mm, before.image_plane_distance_mm);
+  QCOMPARE(w.settings().camera().image_plane_distance_mm, before.image_plane_distance_mm);
 
   // Capture with no source running, through the wizard's request to the worker.
   page.findChild<QPushButton*>(QStringLiteral("captureIntrinsicsImage"))->click();

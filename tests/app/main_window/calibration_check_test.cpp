@@ -25,9 +25,9 @@ namespace {
 // The calibration pattern at `pose` with the default settings (through `lens`), as a PNG to open.
 QString patternFile(const QString& name, const Pose& pose, const Distortion& lens = {}) {
   Settings s;
-  s.camera.distortion = lens;
+  s.camera().distortion = lens;
   cv::Mat image;
-  renderPattern(s.camera, s.target, s.pattern, s.virtual_scene, pose, image, 1);
+  renderPattern(s.camera(), s.target, s.pattern, s.virtual_scene, pose, image, 1);
   const QString path = scratchDir(name) + QStringLiteral("/pattern.png");
   cv::imwrite(path.toStdString(), image);
   return path;
@@ -68,14 +68,14 @@ void CalibrationCheckTest::overlayMatchesThePatternsTruth() {
   std::vector<PatternSpot> pattern;
   patternSpots(s.pattern, s.target, pattern);
   std::vector<IdealSpot> expected;
-  projectPatternSpots(s.camera, s.pattern, pattern, truth, expected);
+  projectPatternSpots(s.camera(), s.pattern, pattern, truth, expected);
   QVERIFY(expected.size() > 300);
   QVERIFY(std::abs(static_cast<int>(check.ideal.size()) - static_cast<int>(expected.size())) <= 10);
   double worst = 0.0;
   for (const Eigen::Vector2d& p : check.ideal) {
     double nearest = std::numeric_limits<double>::infinity();
     for (const IdealSpot& e : expected) nearest = std::min(nearest, (e.ideal - p).norm());
-    if (p.x() > 2 && p.y() > 2 && p.x() < s.camera.width - 3 && p.y() < s.camera.height - 3)
+    if (p.x() > 2 && p.y() > 2 && p.x() < s.camera().width - 3 && p.y() < s.camera().height - 3)
       worst = std::max(worst, nearest);
   }
   QVERIFY2(worst < 1.0, qPrintable(QString::number(worst)));

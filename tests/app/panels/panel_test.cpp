@@ -241,8 +241,8 @@ void PanelTest::settingsDialog() {
   QCOMPARE(w.worker()->appliedSettings().target.radius_mm, Settings{}.target.radius_mm);
   dialog->findChild<QDialogButtonBox*>()->button(QDialogButtonBox::Ok)->click();
   QVERIFY(waitForApplied(w, [](const Settings& s) {
-    return s.target.radius_mm == 42.5 && s.camera.image_plane_distance_mm == 12.0 && s.virtual_scene.key_step_mm == 7.5 &&
-           s.camera.distortion.k1 == -2.05e-7;
+    return s.target.radius_mm == 42.5 && s.camera().image_plane_distance_mm == 12.0 && s.virtual_scene.key_step_mm == 7.5 &&
+           s.camera().distortion.k1 == -2.05e-7;
   }));
 }
 

@@ -12,6 +12,8 @@
 #include <QStatusBar>
 #include <QTest>
 
+#include <linux/videodev2.h>
+
 #include "app/worker/camera_arguments.h"
 #include "app/settings/camera_settings_page.h"
 #include "app/panels/control_panel.h"
@@ -309,6 +311,82 @@ void CameraSettingsTest::commandLineChoosesTheCamera() {
   w.startSource();
   QTRY_VERIFY_WITH_TIMEOUT(w.lastError().contains(kMissing + QStringLiteral(": ") + kCameraNotFound), 5000);
   QVERIFY(!w.worker()->isRunning());
+}
+
+void CameraSettingsTest::captureCardInputAndStandard() {
+  // A USB camera: no input or standard to choose, so neither row shows.
+  Settings model;
+  std::vector<SetCall> calls;
+  DeviceInfo usb = handMadeCamera();
+  usb.inputs = {{0, "Camera 1", false, 0}};
+  {
+    CameraSettingsPage page(model, testDevices({usb.path}, usb, &calls));
+    page.show();
+    model.camera_source.device = usb.path;
+    page.rescan();
+    QVERIFY(!child<QComboBox>(page, QStringLiteral("cameraInput"))->isVisible());
+    QVERIFY(!child<QComboBox>(page, QStringLiteral("cameraStandard"))->isVisible());
+  }
+  // A PXC200-like card: three inputs, the standards each takes.
+  DeviceInfo card = handMadeCamera();
+  card.card = "PXC200 frame grabber";
+  card.inputs = {{0, "Composite0", false, V4L2_STD_PAL | V4L2_STD_NTSC | V4L2_STD_SECAM},
+                 {1, "Composite1", false, V4L2_STD_PAL | V4L2_STD_NTSC},
+                 {2, "S-Video", false, V4L2_STD_NTSC}};
+  card.current_input = 0;
+  card.standards = {{V4L2_STD_PAL_BG, "PAL-BG", 25.0}, {V4L2_STD_NTSC_M, "NTSC-M", 29.97}};
+  model.camera_source.device = card.path;
+  CameraSettingsPage page(model, testDevices({card.path}, card, &calls));
+  page.show();
+  auto* input = child<QComboBox>(page, QStringLiteral("cameraInput"));
+  auto* standard = child<QComboBox>(page, QStringLiteral("cameraStandard"));
+  QVERIFY(input->isVisible());
+  QVERIFY(standard->isVisible());
+  QCOMPARE(input->count(), 4);  // the device's own, then the three
+  QCOMPARE(input->itemText(3), QStringLiteral("2: S-Video"));
+  QCOMPARE(standard->count(), 4);  // the device's own, PAL, NTSC, SECAM (Composite0 is current)
+  input->setCurrentIndex(3);
+  QCOMPARE(model.camera_source.input, 2);
+  QCOMPARE(standard->count(), 2);  // S-Video takes NTSC only
+  QCOMPARE(standard->itemText(1), QStringLiteral("NTSC"));
+  standard->setCurrentIndex(1);
+  QCOMPARE(model.camera_source.standard, TvStandard::Ntsc);
+  // A stored choice the device lacks is kept and marked.
+  model.camera_source.input = 5;
+  page.rescan();
+  QVERIFY(input->currentText().contains(QStringLiteral("not on this device")));
+  QCOMPARE(model.camera_source.input, 5);
+  QVERIFY(calls.empty());
+}
+
+void CameraSettingsTest::dialogEditsEachSourcesCamera() {
+  Settings model;
+  model.source = SourceKind::File;
+  std::vector<SetCall> calls;
+  SettingsDialog dialog(model, nullptr, testDevices({}, DeviceInfo{}, &calls));
+  auto* chooser = dialog.findChild<QComboBox*>(QStringLiteral("cameraModelSource"));
+  auto* distortion_chooser = dialog.findChild<QComboBox*>(QStringLiteral("distortionSource"));
+  auto* d0 = dialog.findChild<QDoubleSpinBox*>(QStringLiteral("cameraD0"));
+  auto* k1 = dialog.findChild<QLineEdit*>(QStringLiteral("distortionK1"));
+  QVERIFY(chooser && distortion_chooser && d0 && k1);
+  QCOMPARE(chooser->currentText(), QStringLiteral("File"));  // the source in use first
+  d0->setValue(12.0);
+  k1->setText(QStringLiteral("-2e-07"));
+  emit k1->editingFinished();
+  // The Camera source's model: its own values, edited apart.
+  chooser->setCurrentIndex(chooser->findData(static_cast<int>(SourceKind::Camera)));
+  QCOMPARE(distortion_chooser->currentText(), QStringLiteral("Camera"));  // both tabs show one source
+  QCOMPARE(d0->value(), CameraModel{}.image_plane_distance_mm);
+  QCOMPARE(k1->text().toDouble(), 0.0);
+  d0->setValue(6.0);
+  Settings out;
+  out.source = SourceKind::Virtual;
+  dialog.applyTo(out);
+  QCOMPARE(out.camera(SourceKind::File).image_plane_distance_mm, 12.0);
+  QCOMPARE(out.camera(SourceKind::File).distortion.k1, -2e-7);
+  QCOMPARE(out.camera(SourceKind::Camera).image_plane_distance_mm, 6.0);
+  QCOMPARE(out.camera(SourceKind::Virtual).image_plane_distance_mm, CameraModel{}.image_plane_distance_mm);
+  QCOMPARE(out.source, SourceKind::Virtual);  // the source in use is not the dialog's to change
 }
 
 }  // namespace imagepro::app::test

@@ -4,8 +4,14 @@
 #include <QTest>
 #include <QThread>
 
+#include <opencv2/imgcodecs.hpp>
+
+#include <cmath>
+
 #include "app/worker/worker.h"
 #include "app_test_classes.h"
+#include "app_test_support.h"
+#include "core/source/virtual_renderer.h"
 
 namespace imagepro::app::test {
 
@@ -26,6 +32,14 @@ struct WorkerThread {
   QThread thread;
   Worker* worker;
 };
+
+// Keeps the latest packet in `last`, each marked displayed so that the next one comes.
+void keepLatest(WorkerThread& w, QObject& context, DisplayPacketPtr& last) {
+  QObject::connect(w.worker, &Worker::packetReady, &context, [&w, &last](const DisplayPacketPtr& p) {
+    last = p;
+    w.worker->markDisplayed();
+  });
+}
 
 Settings fastVirtual() {
   Settings s;
@@ -65,10 +79,7 @@ void WorkerTest::settingsApplyAtTheNextFrame() {
   WorkerThread w(fastVirtual());
   DisplayPacketPtr last;
   QObject context;
-  QObject::connect(w.worker, &Worker::packetReady, &context, [&](const DisplayPacketPtr& p) {
-    last = p;
-    w.worker->markDisplayed();
-  });
+  keepLatest(w, context, last);
   w.worker->start(SourceKind::Virtual);
   QTRY_VERIFY_WITH_TIMEOUT(last != nullptr, 10000);
   QVERIFY(w.worker->isRunning());
@@ -98,6 +109,35 @@ void WorkerTest::settingsApplyAtTheNextFrame() {
   const std::int64_t frames = w.worker->framesProcessed();
   QTest::qWait(100);
   QCOMPARE(w.worker->framesProcessed(), frames);
+}
+
+// Each source's frames are reconstructed with that source's camera model, whatever the
+// settings handed over say is in use: a File camera with twice the image plane distance
+// puts the same picture of a target facing the camera twice as far away.
+void WorkerTest::reconstructsWithTheRunningSourcesCamera() {
+  Settings s = fastVirtual();
+  s.camera(SourceKind::File).image_plane_distance_mm = 2.0 * s.camera(SourceKind::Virtual).image_plane_distance_mm;
+  s.source = SourceKind::File;  // not the worker's to follow: it runs the Virtual source first
+  const double tz = s.virtual_scene.initial_pose.tz_mm;
+  const QString file = scratchDir(QStringLiteral("worker_cameras")) + QStringLiteral("/facing.png");
+  cv::Mat grey;
+  renderTarget(s.camera(SourceKind::Virtual), s.target, s.virtual_scene, s.virtual_scene.initial_pose, grey);
+  QVERIFY(cv::imwrite(file.toStdString(), grey));
+
+  WorkerThread w(s);
+  DisplayPacketPtr last;
+  QObject context;
+  keepLatest(w, context, last);
+  w.worker->start(SourceKind::Virtual);
+  QTRY_VERIFY_WITH_TIMEOUT(last && last->result.pose, 10000);
+  QVERIFY2(std::abs(last->result.pose->tz_mm - tz) < 0.01 * tz, qPrintable(QString::number(last->result.pose->tz_mm)));
+  w.worker->stop();
+  QTRY_VERIFY_WITH_TIMEOUT(!w.worker->isRunning(), 5000);
+
+  last.reset();
+  w.worker->openFiles({file});
+  QTRY_VERIFY_WITH_TIMEOUT(last && !last->result.name.empty() && last->result.pose, 10000);
+  QVERIFY2(std::abs(last->result.pose->tz_mm - 2.0 * tz) < 0.01 * tz, qPrintable(QString::number(last->result.pose->tz_mm)));
 }
 
 }  // namespace imagepro::app::test

@@ -108,12 +108,12 @@ TEST(TwoTargetStudy, CancelStopsBeforeTheNextFrame) {
 
 TEST(TwoTargetStudy, SourceFramesAreMeasuredAndUnreadableOnesKeepTheirReason) {
   Settings s = studySettings();
-  s.camera.distortion = kThesisCameraDistortion;
+  s.camera().distortion = kThesisCameraDistortion;
   const TwoTargetObject object;
   TwoTargetRenderWorkspace ws;
   std::vector<cv::Mat> images(3);
   for (int i : {0, 2})
-    renderTwoTargets(s.camera, s.target, s.virtual_scene, object, twoTargetStudyPosition(1), images[i],
+    renderTwoTargets(s.camera(), s.target, s.virtual_scene, object, twoTargetStudyPosition(1), images[i],
                      static_cast<std::uint64_t>(i), ws);
   ListSource source(images);
   Progress progress;

@@ -17,7 +17,7 @@ Settings studySettings(bool distorted, RenderMode mode = RenderMode::Grey) {
   Settings s;
   s.virtual_scene.mode = mode;
   s.virtual_scene.noise_sigma = mode == RenderMode::Grey ? 2.0 : 0.0;
-  if (distorted) s.camera.distortion = kThesisCameraDistortion;
+  if (distorted) s.camera().distortion = kThesisCameraDistortion;
   return s;
 }
 
@@ -55,9 +55,9 @@ TEST(TwoTargets, RenderHoldsEachTargetAsItsOwnRenderShowsIt) {
   const auto poses = twoTargetPoses({}, object);
   cv::Mat both, left, right;
   TwoTargetRenderWorkspace ws;
-  renderTwoTargets(s.camera, s.target, s.virtual_scene, {}, object, both, 0, ws);
-  renderTarget(s.camera, s.target, s.virtual_scene, poses[0], left);
-  renderTarget(s.camera, s.target, s.virtual_scene, poses[1], right);
+  renderTwoTargets(s.camera(), s.target, s.virtual_scene, {}, object, both, 0, ws);
+  renderTarget(s.camera(), s.target, s.virtual_scene, poses[0], left);
+  renderTarget(s.camera(), s.target, s.virtual_scene, poses[1], right);
   cv::Mat expected;
   cv::max(left, right, expected);  // white disks on black cards and background
   EXPECT_EQ(cv::norm(both, expected, cv::NORM_INF), 0.0);
@@ -72,9 +72,9 @@ TEST(TwoTargets, GreyRenderLaysTheRightCardOverTheLeftRender) {
   const auto poses = twoTargetPoses({}, object);
   cv::Mat both, left, right;
   TwoTargetRenderWorkspace ws;
-  renderTwoTargets(s.camera, s.target, s.virtual_scene, {}, object, both, 0, ws);
-  renderTarget(s.camera, s.target, s.virtual_scene, poses[0], left);
-  renderTarget(s.camera, s.target, s.virtual_scene, poses[1], right);
+  renderTwoTargets(s.camera(), s.target, s.virtual_scene, {}, object, both, 0, ws);
+  renderTarget(s.camera(), s.target, s.virtual_scene, poses[0], left);
+  renderTarget(s.camera(), s.target, s.virtual_scene, poses[1], right);
   const int background = s.virtual_scene.background_level;
   int checked = 0;
   for (int v = 0; v < both.rows; ++v)
@@ -105,7 +105,7 @@ void measurePosition(const Settings& s, int position, bool correct, int frames, 
   for (int i = 0; i < frames; ++i) {
     VirtualSceneOptions scene = s.virtual_scene;
     applyStudyLighting(i < frames / 2 ? StudyLighting::Natural : StudyLighting::Extra, scene);
-    renderTwoTargets(s.camera, s.target, scene, object, twoTargetStudyPosition(position), image,
+    renderTwoTargets(s.camera(), s.target, scene, object, twoTargetStudyPosition(position), image,
                      static_cast<std::uint64_t>(i), render_ws);
     ASSERT_EQ(reconstructAllTargets(run, image, ws, result), Status::Ok);
     ASSERT_EQ(result.targets.size(), 2u);
@@ -158,7 +158,7 @@ TEST(TwoTargets, FramesWithoutTwoTargetsGiveNamedErrors) {
 
   // One target only.
   cv::Mat one;
-  renderTarget(s.camera, s.target, s.virtual_scene, Pose{0, 20, 0, -50, 0, 800}, one);
+  renderTarget(s.camera(), s.target, s.virtual_scene, Pose{0, 20, 0, -50, 0, 800}, one);
   ASSERT_EQ(reconstructAllTargets(s, one, ws, result), Status::Ok);
   EXPECT_EQ(result.reconstructed(), 1);
   EXPECT_EQ(measureTwoTargets(result, m), Status::TooFewTargets);

@@ -137,7 +137,7 @@ TEST_F(CalibrationProcedure, FourViewsWithTheirTruePoses) {
             Status::Ok);
   EXPECT_EQ(reported, r.iterations);
   EXPECT_LE(r.iterations, 5);
-  const FieldComparison c = compareDistortionFields(settings_.camera, r.distortion, kThesisCameraDistortion);
+  const FieldComparison c = compareDistortionFields(settings_.camera(), r.distortion, kThesisCameraDistortion);
   EXPECT_LT(c.rms_px, 0.1);
   EXPECT_LT(r.rms_residual_px, 0.1);
   for (const CalibrationImageReport& im : r.images) {
@@ -155,7 +155,7 @@ TEST_F(CalibrationProcedure, WithoutPoseCorrectionGivenExactPoses) {
   CalibrationResult r;
   ASSERT_EQ(calibrateDistortion(settings_, images_, r, {}, truePoses(images_, poses_)), Status::Ok);
   EXPECT_LE(r.iterations, 5);
-  EXPECT_LT(compareDistortionFields(settings_.camera, r.distortion, kThesisCameraDistortion).rms_px, 0.1);
+  EXPECT_LT(compareDistortionFields(settings_.camera(), r.distortion, kThesisCameraDistortion).rms_px, 0.1);
   for (size_t i = 0; i < r.images.size(); ++i) {
     EXPECT_EQ(rotationMatrix(r.images[i].pose), rotationMatrix(poses_[i]));  // never corrected
     EXPECT_EQ(r.images[i].target_pose.tz_mm, poses_[i].tz_mm);
@@ -169,7 +169,7 @@ TEST_F(CalibrationProcedure, FourViewsFromTheTargetAlone) {
   ASSERT_EQ(calibrateDistortion(settings_, images_, r), Status::Ok);
   EXPECT_TRUE(r.converged);
   EXPECT_LE(r.iterations, 5);
-  const FieldComparison c = compareDistortionFields(settings_.camera, r.distortion, kThesisCameraDistortion);
+  const FieldComparison c = compareDistortionFields(settings_.camera(), r.distortion, kThesisCameraDistortion);
   EXPECT_LE(c.rms_px, 0.1);
   for (size_t i = 0; i < r.images.size(); ++i) {
     EXPECT_EQ(r.images[i].status, Status::Ok);
@@ -181,7 +181,7 @@ TEST_F(CalibrationProcedure, FourViewsFromTheTargetAlone) {
 
 TEST_F(CalibrationProcedure, AViewWithoutItsTargetIsReportedAndSkipped) {
   // The card and its target covered by a white sheet: the pattern is there, the target not.
-  CameraModel lens = settings_.camera;
+  CameraModel lens = settings_.camera();
   lens.distortion = kThesisCameraDistortion;
   const double h = 0.5 * settings_.pattern.card_size_mm + 10.0;
   std::vector<cv::Point> cover;
@@ -199,7 +199,7 @@ TEST_F(CalibrationProcedure, AViewWithoutItsTargetIsReportedAndSkipped) {
   EXPECT_EQ(r.images[1].match.matched, 0);
   EXPECT_EQ(r.history.back().images_used, 3);
   EXPECT_LE(r.iterations, 5);
-  EXPECT_LT(compareDistortionFields(settings_.camera, r.distortion, kThesisCameraDistortion).rms_px, 0.1);
+  EXPECT_LT(compareDistortionFields(settings_.camera(), r.distortion, kThesisCameraDistortion).rms_px, 0.1);
 }
 
 TEST_F(CalibrationProcedure, AnImageWithoutTargetIsReportedAndSkipped) {
@@ -211,7 +211,7 @@ TEST_F(CalibrationProcedure, AnImageWithoutTargetIsReportedAndSkipped) {
   ASSERT_EQ(calibrateDistortion(settings_, images_, r, {}, blind), Status::Ok);
   EXPECT_EQ(r.images[1].status, Status::NoTarget);
   EXPECT_EQ(r.history.back().images_used, 3);
-  EXPECT_LT(compareDistortionFields(settings_.camera, r.distortion, kThesisCameraDistortion).rms_px, 0.15);
+  EXPECT_LT(compareDistortionFields(settings_.camera(), r.distortion, kThesisCameraDistortion).rms_px, 0.15);
 
   const PatternLocator none = [](const cv::Mat&, const CameraModel&, Pose&) { return Status::NoTarget; };
   EXPECT_EQ(calibrateDistortion(settings_, images_, r, {}, none), Status::NoTarget);
@@ -220,7 +220,7 @@ TEST_F(CalibrationProcedure, AnImageWithoutTargetIsReportedAndSkipped) {
 
 TEST_F(CalibrationProcedure, TheTargetWithoutPatternHasTooFewMatches) {
   cv::Mat target;
-  CameraModel lens = settings_.camera;
+  CameraModel lens = settings_.camera();
   lens.distortion = kThesisCameraDistortion;
   renderTarget(lens, settings_.target, testing::realisticScene(), poses_[0], target);
   const std::vector<cv::Mat> one{target};
@@ -238,7 +238,7 @@ TEST_F(CalibrationProcedure, ADoubleExposureIsAMatchAmbiguity) {
   // The pattern seen twice, 14 mm apart along its x axis (the sheet moved during the
   // exposure): every spot has its twin 14 mm on one side and its neighbour's 11 mm on the
   // other, both within half a spacing.
-  CameraModel lens = settings_.camera;
+  CameraModel lens = settings_.camera();
   lens.distortion = kThesisCameraDistortion;
   Pose moved = poses_[2];
   const Eigen::Vector3d shift = rotationMatrix(moved) * Eigen::Vector3d(14.0, 0.0, 0.0);
@@ -307,7 +307,7 @@ TEST(CalibrationCoverage, AnA4SheetTooFarAwayIsPoorCoverage) {
     const auto images = testing::renderViews(settings, kThesisCameraDistortion, views, testing::realisticScene());
     CalibrationResult r;
     const Status s = calibrateDistortion(settings, images, r);
-    const double fieldRms = compareDistortionFields(settings.camera, r.distortion, kThesisCameraDistortion).rms_px;
+    const double fieldRms = compareDistortionFields(settings.camera(), r.distortion, kThesisCameraDistortion).rms_px;
     std::printf("A4 sheet at %.0f mm: %s, reach %.3f of the corner radius, field error %.3f px RMS\n", distance,
                 std::string(statusName(s)).c_str(), r.coverage_radius_fraction, fieldRms);
     if (distance > 500.0) {
@@ -337,7 +337,7 @@ TEST(CalibrationCoverage, AnA4SheetFarTooFarAwayDiverges) {
   EXPECT_FALSE(r.converged);
   ASSERT_FALSE(r.history.empty());
   EXPECT_LT(r.iterations, settings.pipeline.calibration.max_iterations);  // not the iteration limit
-  EXPECT_FALSE(distortionPlausible(settings.camera, r.history.back().distortion));
+  EXPECT_FALSE(distortionPlausible(settings.camera(), r.history.back().distortion));
   for (const CalibrationImageReport& im : r.images) EXPECT_EQ(im.status, Status::Ok);
 }
 

@@ -31,7 +31,7 @@ TEST(CalibrationCheck, IdealPositionsFollowTheTruthAndFoundSpotsLieNearThem) {
   Settings settings;
   settings.pipeline.tracking.mode = TrackingMode::Off;
   for (const Distortion& lens : {Distortion{}, kThesisCameraDistortion}) {
-    settings.camera.distortion = lens;
+    settings.camera().distortion = lens;
     settings.pipeline.reconstruction.distortion_correction = lens.k1 != 0.0;
     const auto views = calibrationViews();
     const auto images = renderViews(settings, lens, views, realisticScene());
@@ -40,7 +40,7 @@ TEST(CalibrationCheck, IdealPositionsFollowTheTruthAndFoundSpotsLieNearThem) {
       std::vector<PatternSpot> pattern;
       patternSpots(settings.pattern, settings.target, pattern);
       std::vector<IdealSpot> truth;
-      projectPatternSpots(settings.camera, settings.pattern, pattern, views[v], truth);
+      projectPatternSpots(settings.camera(), settings.pattern, pattern, views[v], truth);
 
       CalibrationCheckWorkspace ws;
       CalibrationCheck check;
@@ -62,7 +62,7 @@ TEST(CalibrationCheck, IdealPositionsFollowTheTruthAndFoundSpotsLieNearThem) {
       EXPECT_EQ(check.stats.ambiguous, 0);
       ASSERT_EQ(check.matches.size(), static_cast<size_t>(check.stats.matched));
       for (const auto& [i, o] : check.matches) {
-        const Eigen::Vector2d expected = distortPixel(settings.camera, check.ideal[i]);
+        const Eigen::Vector2d expected = distortPixel(settings.camera(), check.ideal[i]);
         EXPECT_LT((check.seen[o] - expected).norm(), 1.0) << check.ideal[i].transpose();
       }
     }
@@ -77,7 +77,7 @@ TEST(CalibrationCheck, NamedErrorsForFramesItCannotCheck) {
   EXPECT_EQ(checkCalibrationView(settings, cv::Mat(100, 100, CV_8UC1, cv::Scalar(128)), Pose{}, ws, check),
             Status::FrameSizeMismatch);
   // A flat frame has no threshold: the ideal positions are there, no spots.
-  const cv::Mat flat(settings.camera.height, settings.camera.width, CV_8UC1, cv::Scalar(128));
+  const cv::Mat flat(settings.camera().height, settings.camera().width, CV_8UC1, cv::Scalar(128));
   EXPECT_NE(checkCalibrationView(settings, flat, Pose{0, 0, 0, 0, 0, 800}, ws, check), Status::Ok);
   EXPECT_EQ(check.status, Status::ThresholdUndefined);
   EXPECT_FALSE(check.ideal.empty());

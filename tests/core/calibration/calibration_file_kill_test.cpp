@@ -27,9 +27,9 @@ TEST(CalibrationFileKill, SaveKilledAnywhereLeavesTheOldOrTheNewFiles) {
   const fs::path dir = test::freshDir("calibration_kill");
   const fs::path path = dir / "camera.json";
   Settings a, b;
-  a.camera.distortion.k1 = -0.2;
-  b.camera.distortion.k1 = 0.1;
-  b.camera.image_plane_distance_mm = 8.3;
+  a.camera().distortion.k1 = -0.2;
+  b.camera().distortion.k1 = 0.1;
+  b.camera().image_plane_distance_mm = 8.3;
   const std::set<std::string> written{calibrationFileJson(a), calibrationFileJson(b)};
   std::string error;
   ASSERT_TRUE(writeCalibrationFile(path.string(), a, error)) << error;

@@ -19,17 +19,20 @@ std::string scratch(const std::string& name) {
   return p.string();
 }
 
+// The File source's camera calibrated (images taken as files), in use.
 Settings calibrated() {
   Settings s;
-  s.camera.distortion = kThesisCameraDistortion;
-  s.camera.principal_point_px = {321.25, 238.5};
+  s.source = SourceKind::File;
+  s.camera().distortion = kThesisCameraDistortion;
+  s.camera().principal_point_px = {321.25, 238.5};
   s.target.radius_mm = 40.0;  // not part of the file
   return s;
 }
 
 TEST(CalibrationFile, HoldsOnlyTheCameraAndReadsBackAsSettings) {
   const std::string text = calibrationFileJson(calibrated());
-  EXPECT_EQ(text.rfind("{\n  \"camera\": {", 0), 0u);
+  EXPECT_EQ(text.rfind("{\n  \"cameras\": {\n    \"file\": {", 0), 0u) << text;  // the source in use's alone
+  EXPECT_EQ(text.find("\"virtual\""), std::string::npos);
   EXPECT_EQ(text.find("\"target\""), std::string::npos);
   EXPECT_EQ(text.back(), '\n');
 
@@ -38,11 +41,15 @@ TEST(CalibrationFile, HoldsOnlyTheCameraAndReadsBackAsSettings) {
   ASSERT_TRUE(writeCalibrationFile(path, calibrated(), error)) << error;
   Settings loaded;
   ASSERT_EQ(loadSettings(path, loaded, error), Status::Ok) << error;
-  EXPECT_EQ(loaded.camera.distortion.k1, kThesisCameraDistortion.k1);
-  EXPECT_EQ(loaded.camera.distortion.k2, kThesisCameraDistortion.k2);
-  EXPECT_EQ(loaded.camera.distortion.p1, kThesisCameraDistortion.p1);
-  EXPECT_EQ(loaded.camera.distortion.p2, kThesisCameraDistortion.p2);
-  EXPECT_EQ(loaded.camera.principal_point_px[0], 321.25);
+  const CameraModel& file = loaded.camera(SourceKind::File);
+  EXPECT_EQ(file.distortion.k1, kThesisCameraDistortion.k1);
+  EXPECT_EQ(file.distortion.k2, kThesisCameraDistortion.k2);
+  EXPECT_EQ(file.distortion.p1, kThesisCameraDistortion.p1);
+  EXPECT_EQ(file.distortion.p2, kThesisCameraDistortion.p2);
+  EXPECT_EQ(file.principal_point_px[0], 321.25);
+  // Bound to that source: the others keep what they had.
+  EXPECT_EQ(loaded.camera(SourceKind::Camera).distortion.k1, 0.0);
+  EXPECT_EQ(loaded.camera(SourceKind::Virtual).principal_point_px[0], CameraModel{}.principal_point_px[0]);
   EXPECT_EQ(loaded.target.radius_mm, Settings{}.target.radius_mm);  // missing keys: defaults
 }
 

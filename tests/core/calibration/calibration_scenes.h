@@ -32,7 +32,7 @@ inline VirtualSceneOptions realisticScene() {
 
 inline std::vector<cv::Mat> renderViews(const Settings& settings, const Distortion& lens,
                                         const std::array<Pose, 4>& poses, const VirtualSceneOptions& scene) {
-  CameraModel camera = settings.camera;
+  CameraModel camera = settings.camera();
   camera.distortion = lens;
   std::vector<cv::Mat> images(poses.size());
   for (size_t i = 0; i < poses.size(); ++i)

@@ -18,11 +18,11 @@ double focalLength(double d0, double z) { return d0 * z / (d0 + z); }
 // that goes with it is the known distance.
 TEST(D0Estimation, RecoversTheKnownD0OfVirtualFramesAtKnownDistances) {
   Settings rendering;
-  rendering.camera.image_plane_distance_mm = 12.0;
+  rendering.camera().image_plane_distance_mm = 12.0;
   Settings settings;  // d0 8 mm: not used
   for (const double distance : {700.0, 1000.0, 1300.0}) {
     Frame frame;
-    renderTarget(rendering.camera, rendering.target, rendering.virtual_scene, Pose{20, -15, 30, 40, -20, distance},
+    renderTarget(rendering.camera(), rendering.target, rendering.virtual_scene, Pose{20, -15, 30, 40, -20, distance},
                  frame.image);
     D0Estimator estimator(settings, D0Options{focalLength(12.0, distance), 1e-6, 20});
     FrameResult result;
@@ -40,14 +40,14 @@ TEST(D0Estimation, RecoversTheKnownD0OfVirtualFramesAtKnownDistances) {
 TEST(D0Estimation, FramesWithoutAnEstimateSayWhy) {
   Settings settings;
   Frame blank;
-  blank.image = cv::Mat(settings.camera.height, settings.camera.width, CV_8UC1, cv::Scalar(30));
+  blank.image = cv::Mat(settings.camera().height, settings.camera().width, CV_8UC1, cv::Scalar(30));
   D0Estimator estimator(settings, D0Options{7.9, 1e-6, 20});
   FrameResult result;
   D0FrameEstimate out;
   estimator.process(blank, result, out);
   EXPECT_FALSE(ok(out.status));
   Frame target;
-  renderTarget(settings.camera, settings.target, settings.virtual_scene, Pose{0, 0, 0, 0, 0, 800}, target.image);
+  renderTarget(settings.camera(), settings.target, settings.virtual_scene, Pose{0, 0, 0, 0, 0, 800}, target.image);
   D0Estimator no_lens(settings, D0Options{0.0, 1e-6, 20});
   no_lens.process(target, result, out);
   EXPECT_EQ(out.status, Status::InvalidSettings);

@@ -81,7 +81,7 @@ cv::Mat photograph(const cv::Mat& sheet, const SheetFrame& frame, const CameraMo
 
 TEST(ForeignPattern, AnIndependentlyDrawnPatternCalibrates) {
   Settings settings;  // the pattern, target and camera of the settings' defaults
-  CameraModel lens = settings.camera;
+  CameraModel lens = settings.camera();
   lens.distortion = kThesisCameraDistortion;
   const cv::Mat sheet = drawSheet(settings.pattern, settings.target);
   const SheetFrame frame{0.5 * sheet.cols - 0.5, 0.5 * sheet.rows - 0.5, kSheetPxPerMm};
@@ -97,7 +97,7 @@ TEST(ForeignPattern, AnIndependentlyDrawnPatternCalibrates) {
     EXPECT_EQ(im.match.ambiguous, 0);
     EXPECT_GT(im.match.matched, 0.9 * im.spots_expected);
   }
-  const FieldComparison c = compareDistortionFields(settings.camera, r.distortion, kThesisCameraDistortion);
+  const FieldComparison c = compareDistortionFields(settings.camera(), r.distortion, kThesisCameraDistortion);
   EXPECT_LT(c.rms_px, 0.1);
   std::printf("independently drawn pattern: field error %.4f px RMS, %.4f px max, %d iterations, residual %.4f px\n",
               c.rms_px, c.max_px, r.iterations, r.rms_residual_px);
@@ -110,7 +110,7 @@ TEST(ForeignPattern, AnIndependentlyDrawnPatternCalibrates) {
 // grid match no spot) and with the grid set to the page's.
 TEST(ForeignPattern, ThePrintedPageCalibrates) {
   Settings settings;
-  CameraModel lens = settings.camera;
+  CameraModel lens = settings.camera();
   lens.distortion = kThesisCameraDistortion;
   constexpr double kDpi = 150.0;
   PatternPage page;
@@ -138,7 +138,7 @@ TEST(ForeignPattern, ThePrintedPageCalibrates) {
       EXPECT_EQ(im.status, Status::Ok);
       EXPECT_EQ(im.match.ambiguous, 0);
     }
-    const FieldComparison c = compareDistortionFields(s.camera, r.distortion, kThesisCameraDistortion);
+    const FieldComparison c = compareDistortionFields(s.camera(), r.distortion, kThesisCameraDistortion);
     EXPECT_LT(c.rms_px, 0.1);
     std::printf("printed A3 page at 500 mm, %d x %d grid in the settings: field error %.4f px RMS, %.4f px max, "
                 "reach %.2f, %d iterations\n",

@@ -201,7 +201,7 @@ TEST(SpotFinder, CentresOfRenderedSpots) {
   Settings settings;
   const auto poses = calibrationViews();
   const auto images = testing::renderViews(settings, kThesisCameraDistortion, poses, testing::realisticScene());
-  CameraModel lens = settings.camera;
+  CameraModel lens = settings.camera();
   lens.distortion = kThesisCameraDistortion;
   std::vector<PatternSpot> spots;
   patternSpots(settings.pattern, settings.target, spots);
@@ -210,7 +210,7 @@ TEST(SpotFinder, CentresOfRenderedSpots) {
     std::vector<ObservedSpot> seen;
     ASSERT_EQ(findPatternSpots(images[v], settings.pipeline.threshold, ws, seen), Status::Ok);
     std::vector<IdealSpot> ideal;
-    projectPatternSpots(settings.camera, settings.pattern, spots, poses[v], ideal);
+    projectPatternSpots(settings.camera(), settings.pattern, spots, poses[v], ideal);
     double sum = 0, worst = 0;
     int found = 0, inside = 0;
     for (const IdealSpot& s : ideal) {

@@ -220,6 +220,84 @@ TEST(QueryDevice, ListsFormatsSizesRatesAndControls) {
   EXPECT_EQ(info.controls[4].type, ControlType::Boolean);
 }
 
+TEST(QueryDevice, ACaptureCardsInputsAndStandards) {
+  FakeDevice device;
+  test::addCaptureCard(device);
+  DeviceInfo info;
+  std::string error;
+  ASSERT_EQ(queryDevice(device, device.path, info, error), Status::Ok) << error;
+  ASSERT_EQ(info.inputs.size(), 3u);
+  EXPECT_EQ(info.inputs[0].name, "Composite0");
+  EXPECT_EQ(info.inputs[2].index, 2u);
+  EXPECT_EQ(info.inputs[2].name, "S-Video");
+  EXPECT_EQ(info.inputs[2].standards, V4L2_STD_NTSC);
+  EXPECT_EQ(info.current_input, 0);
+  // The standards of the current input, as the driver lists them.
+  ASSERT_EQ(info.standards.size(), 3u);
+  EXPECT_EQ(info.standards[0].name, "PAL-BG");
+  EXPECT_DOUBLE_EQ(info.standards[0].frame_rate_hz, 25.0);
+  EXPECT_EQ(info.standards[1].name, "NTSC-M");
+  EXPECT_NEAR(info.standards[1].frame_rate_hz, 29.97, 1e-3);
+  EXPECT_EQ(info.current_standard, V4L2_STD_PAL_BG);
+  EXPECT_EQ(tvStandardsOffered(info), (std::vector<TvStandard>{TvStandard::Pal, TvStandard::Ntsc, TvStandard::Secam}));
+  EXPECT_EQ(tvStandardsOffered(info, 1), (std::vector<TvStandard>{TvStandard::Pal, TvStandard::Ntsc}));
+  EXPECT_EQ(tvStandardsOffered(info, 2), (std::vector<TvStandard>{TvStandard::Ntsc}));
+}
+
+TEST(QueryDevice, ACameraWithoutInputsOrStandardsListsNone) {
+  FakeDevice device;
+  test::addStandardFormats(device);
+  DeviceInfo info;
+  std::string error;
+  ASSERT_EQ(queryDevice(device, device.path, info, error), Status::Ok) << error;
+  EXPECT_TRUE(info.inputs.empty());
+  EXPECT_EQ(info.current_input, -1);
+  EXPECT_TRUE(info.standards.empty());
+  EXPECT_TRUE(tvStandardsOffered(info).empty());
+}
+
+TEST(SelectInputAndStandard, ChosenInThatOrder) {
+  FakeDevice device;
+  test::addCaptureCard(device);
+  const int fd = device.open(device.path.c_str());
+  std::string error;
+  ASSERT_EQ(selectInputAndStandard(device, fd, device.path, 1, TvStandard::Ntsc, error), Status::Ok) << error;
+  EXPECT_EQ(device.input, 1u);
+  EXPECT_EQ(device.standard, V4L2_STD_NTSC_M);
+  ASSERT_EQ(device.selections.size(), 2u);
+  EXPECT_EQ(device.selections[0], "input 1");  // the standards are the input's: it comes first
+  // Neither asked for: nothing set.
+  ASSERT_EQ(selectInputAndStandard(device, fd, device.path, -1, TvStandard::Keep, error), Status::Ok);
+  EXPECT_EQ(device.selections.size(), 2u);
+  device.close(fd);
+}
+
+TEST(SelectInputAndStandard, BadValuesAreNamed) {
+  FakeDevice device;
+  test::addCaptureCard(device);
+  const int fd = device.open(device.path.c_str());
+  std::string error;
+  EXPECT_EQ(selectInputAndStandard(device, fd, device.path, 3, TvStandard::Keep, error), Status::CameraNoSuchInput);
+  EXPECT_EQ(error, "/dev/video-fake: no input 3 (its inputs: 0 Composite0, 1 Composite1, 2 S-Video)");
+  // S-Video takes NTSC only.
+  EXPECT_EQ(selectInputAndStandard(device, fd, device.path, 2, TvStandard::Secam, error),
+            Status::CameraStandardRefused);
+  EXPECT_EQ(error, "/dev/video-fake: input 2 (S-Video) takes no SECAM (it takes NTSC-M)");
+  EXPECT_EQ(device.standard, V4L2_STD_PAL_BG);  // unchanged
+  device.close(fd);
+
+  // A camera has neither.
+  FakeDevice camera;
+  test::addStandardFormats(camera);
+  const int cfd = camera.open(camera.path.c_str());
+  EXPECT_EQ(selectInputAndStandard(camera, cfd, camera.path, 0, TvStandard::Keep, error), Status::CameraNoSuchInput);
+  EXPECT_EQ(error, "/dev/video-fake: no input 0 (the device lists no inputs)");
+  EXPECT_EQ(selectInputAndStandard(camera, cfd, camera.path, -1, TvStandard::Pal, error),
+            Status::CameraStandardRefused);
+  EXPECT_EQ(error, "/dev/video-fake: the device takes no PAL (it takes no TV standard)");
+  camera.close(cfd);
+}
+
 TEST(QueryDevice, OpenErrorsAreNamed) {
   FakeDevice device;
   test::addStandardFormats(device);

@@ -58,21 +58,31 @@ TEST(CameraRequest, FromTheSettings) {
   Settings s;
   CameraRequest r = cameraRequest(s);
   EXPECT_EQ(r.device, "/dev/video0");
-  EXPECT_EQ(r.width, s.camera.width);  // the camera model's size by default
-  EXPECT_EQ(r.height, s.camera.height);
+  EXPECT_EQ(r.width, s.camera().width);  // the camera model's size by default
+  EXPECT_EQ(r.height, s.camera().height);
   EXPECT_EQ(r.frame_rate_hz, 25.0);
-  s.camera.width = 800;
-  s.camera.height = 600;
+  EXPECT_EQ(r.input, -1);  // a capture card's input and standard: the device's own
+  EXPECT_EQ(r.standard, TvStandard::Keep);
+  // The Camera source's camera model, whichever source is in use.
+  s.camera(SourceKind::Camera).width = 800;
+  s.camera(SourceKind::Camera).height = 600;
+  s.camera(SourceKind::File).width = 320;
+  s.source = SourceKind::File;
   s.camera_source.width = 1280;  // one side alone is no size
   EXPECT_EQ(cameraRequest(s).width, 800);
+  EXPECT_EQ(cameraRequest(s).height, 600);
   s.camera_source.height = 720;
   s.camera_source.device = "/dev/video4";
   s.camera_source.frame_rate_hz = 60.0;
+  s.camera_source.input = 1;
+  s.camera_source.standard = TvStandard::Secam;
   r = cameraRequest(s);
   EXPECT_EQ(r.device, "/dev/video4");
   EXPECT_EQ(r.width, 1280);
   EXPECT_EQ(r.height, 720);
   EXPECT_EQ(r.frame_rate_hz, 60.0);
+  EXPECT_EQ(r.input, 1);
+  EXPECT_EQ(r.standard, TvStandard::Secam);
 }
 
 TEST_F(CameraSettingsFixture, StoredControlsAreSetDependentOnesAfterTheirMode) {

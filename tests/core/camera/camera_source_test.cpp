@@ -238,6 +238,33 @@ TEST_F(CameraFixture, OpenAndCapabilityErrorsAreNamed) {
   expectReleased();
 }
 
+TEST_F(CameraFixture, ACaptureCardsInputAndStandardBeforeTheFormat) {
+  FakeDevice card;
+  test::addCaptureCard(card);
+  CameraRequest r = requestFor(card, 0, 0, 0.0);
+  r.input = 1;
+  r.standard = TvStandard::Ntsc;
+  CameraSource camera(r, card);
+  ASSERT_EQ(camera.start(), Status::Ok) << camera.lastError();
+  EXPECT_EQ(card.input, 1u);
+  EXPECT_EQ(card.standard, V4L2_STD_NTSC_M);
+  EXPECT_EQ(camera.format().fourcc, kGrey);
+  Frame frame;
+  EXPECT_EQ(camera.next(frame), Status::Ok) << camera.lastError();
+  camera.stop();
+
+  // A bad input stops the start, named, and leaves the device closed.
+  r.input = 7;
+  CameraSource wrong(r, card);
+  EXPECT_EQ(wrong.start(), Status::CameraNoSuchInput);
+  EXPECT_NE(wrong.lastError().find("no input 7"), std::string::npos) << wrong.lastError();
+  EXPECT_EQ(card.openDescriptors(), 0);
+  // A camera without inputs takes the default request as before.
+  CameraSource plain(requestFor(device), device);
+  EXPECT_EQ(plain.start(), Status::Ok) << plain.lastError();
+  EXPECT_TRUE(device.selections.empty());
+}
+
 TEST_F(CameraFixture, StreamsFramesInPlaceWithDriverTimes) {
   device.formats = {{kGrey, "Grey", {{640, 480, {{1, 25}}}}, false}};
   device.line_padding = 64;  // the driver pads lines: the view keeps its stride

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
@@ -410,6 +411,71 @@ int FakeDevice::handle(unsigned long request, void* arg) {
       }
       return fail(EINVAL);
     }
+    case VIDIOC_ENUMINPUT: {
+      auto& in = *static_cast<v4l2_input*>(arg);
+      if (in.index >= inputs.size()) return fail(EINVAL);
+      const FakeInput& f = inputs[in.index];
+      const std::uint32_t index = in.index;
+      in = v4l2_input{};
+      in.index = index;
+      copyName(in.name, sizeof in.name, f.name);
+      in.type = f.type;
+      in.std = f.standards;
+      return 0;
+    }
+    case VIDIOC_G_INPUT:
+    case VIDIOC_S_INPUT: {
+      if (inputs.empty()) return fail(ENOTTY);
+      auto& index = *static_cast<int*>(arg);
+      if (request == VIDIOC_G_INPUT) {
+        index = static_cast<int>(input);
+        return 0;
+      }
+      if (index < 0 || static_cast<std::size_t>(index) >= inputs.size()) return fail(EINVAL);
+      if (streaming_) return fail(EBUSY);
+      input = static_cast<std::uint32_t>(index);
+      selections.push_back("input " + std::to_string(index));
+      return 0;
+    }
+    case VIDIOC_ENUMSTD: {
+      auto& st = *static_cast<v4l2_standard*>(arg);
+      const v4l2_std_id takes = inputs.empty() ? 0 : inputs[input].standards;
+      std::uint32_t n = 0;
+      for (const FakeStandard& f : standards) {
+        if ((f.id & takes) == 0) continue;
+        if (n++ != st.index) continue;
+        const std::uint32_t index = st.index;
+        st = v4l2_standard{};
+        st.index = index;
+        st.id = f.id;
+        copyName(st.name, sizeof st.name, f.name);
+        st.frameperiod = f.frame_period;
+        return 0;
+      }
+      return fail(EINVAL);
+    }
+    case VIDIOC_G_STD:
+    case VIDIOC_S_STD: {
+      auto& id = *static_cast<v4l2_std_id*>(arg);
+      const v4l2_std_id takes = inputs.empty() ? 0 : inputs[input].standards;
+      if (takes == 0) return fail(ENODATA);
+      if (request == VIDIOC_G_STD) {
+        id = standard;
+        return 0;
+      }
+      if ((id & takes) == 0) return fail(EINVAL);
+      if (streaming_) return fail(EBUSY);
+      // Like a driver: the first listed standard of those asked for.
+      for (const FakeStandard& f : standards)
+        if ((f.id & id & takes) != 0) {
+          standard = f.id;
+          break;
+        }
+      char text[32];
+      std::snprintf(text, sizeof text, "standard %#llx", static_cast<unsigned long long>(standard));
+      selections.emplace_back(text);
+      return 0;
+    }
     default: return fail(ENOTTY);
   }
 }
@@ -454,6 +520,23 @@ void addStandardControls(FakeDevice& device) {
                                     2047, 1, 250, V4L2_CTRL_FLAG_INACTIVE));
   device.controls.push_back(control(V4L2_CID_FOCUS_AUTO, V4L2_CTRL_TYPE_BOOLEAN, "Focus, Automatic Continuous", 0,
                                     1, 1, 1, 0));
+}
+
+}  // namespace imagepro::test
+
+namespace imagepro::test {
+
+void addCaptureCard(FakeDevice& device) {
+  device.card = "PXC200 frame grabber";
+  device.formats = {{makeFourcc('G', 'R', 'E', 'Y'), "8-bit Greyscale", {{768, 576, {{1, 25}}}, {640, 480, {{1001, 30000}}}}, false}};
+  device.inputs = {{"Composite0", V4L2_INPUT_TYPE_CAMERA, V4L2_STD_PAL | V4L2_STD_NTSC | V4L2_STD_SECAM},
+                   {"Composite1", V4L2_INPUT_TYPE_CAMERA, V4L2_STD_PAL | V4L2_STD_NTSC},
+                   {"S-Video", V4L2_INPUT_TYPE_CAMERA, V4L2_STD_NTSC}};
+  device.standards = {{V4L2_STD_PAL_BG, "PAL-BG", {1, 25}},
+                      {V4L2_STD_NTSC_M, "NTSC-M", {1001, 30000}},
+                      {V4L2_STD_SECAM_L, "SECAM-L", {1, 25}}};
+  device.input = 0;
+  device.standard = V4L2_STD_PAL_BG;
 }
 
 }  // namespace imagepro::test

@@ -39,6 +39,19 @@ struct FakeControl {
   std::map<std::uint32_t, std::string> menu;  // index -> name
 };
 
+// An input of a capture card; `standards` is the V4L2 standard mask it takes.
+struct FakeInput {
+  std::string name;
+  std::uint32_t type = V4L2_INPUT_TYPE_CAMERA;
+  v4l2_std_id standards = 0;
+};
+
+struct FakeStandard {
+  v4l2_std_id id = 0;
+  std::string name;
+  v4l2_fract frame_period{1, 25};
+};
+
 // The luma every frame carries at (x, y) in frame `sequence`.
 inline std::uint8_t referenceLuma(int x, int y, std::uint32_t sequence) {
   return static_cast<std::uint8_t>((x * 7 + y * 13 + static_cast<int>(sequence) * 5) & 0xff);
@@ -55,6 +68,12 @@ class FakeDevice final : public DeviceIo {
   std::uint32_t device_caps = V4L2_CAP_VIDEO_CAPTURE | V4L2_CAP_STREAMING;
   std::vector<FakeFormat> formats;
   std::vector<FakeControl> controls;
+  // A capture card's: empty for a camera without inputs or standards. VIDIOC_ENUMSTD
+  // lists the standards the current input takes, as drivers do.
+  std::vector<FakeInput> inputs;
+  std::vector<FakeStandard> standards;
+  std::uint32_t input = 0;   // the current input
+  v4l2_std_id standard = 0;  // the current standard
 
   // ---- how the driver answers
   int s_fmt_errno = 0;                                  // S_FMT fails with this
@@ -87,6 +106,7 @@ class FakeDevice final : public DeviceIo {
   v4l2_pix_format current{};       // the format set last
   FrameInterval interval{1, 25};
   std::uint32_t delivered = 0;     // frames dequeued
+  std::vector<std::string> selections;  // "input 1", "standard 0x..." in the order they were set
   const std::vector<std::uint8_t>& bufferData(std::size_t index) const { return buffers_[index]; }
   std::size_t bufferCount() const { return buffers_.size(); }
 
@@ -122,5 +142,9 @@ class FakeDevice final : public DeviceIo {
 // an inactive exposure time, a gain, a control-class heading and a disabled control.
 void addStandardFormats(FakeDevice& device);
 void addStandardControls(FakeDevice& device);
+// A PXC200-like composite / S-Video card: GREY 768x576 and 640x480; inputs Composite0
+// (PAL, NTSC, SECAM), Composite1 (PAL, NTSC) and S-Video (NTSC); PAL-BG, NTSC-M and
+// SECAM-L listed; Composite0 in PAL-BG to begin with.
+void addCaptureCard(FakeDevice& device);
 
 }  // namespace imagepro::test

@@ -27,7 +27,7 @@ Frame render(const Settings& s, const Pose& pose, std::int64_t index = 0) {
   f.index = index;
   f.timestamp_s = index / s.virtual_scene.frame_rate_hz;
   f.truth = pose;
-  renderTarget(s.camera, s.target, s.virtual_scene, pose, f.image, static_cast<std::uint64_t>(index));
+  renderTarget(s.camera(), s.target, s.virtual_scene, pose, f.image, static_cast<std::uint64_t>(index));
   return f;
 }
 
@@ -48,6 +48,42 @@ TEST(Engine, ReconstructsVirtualPoses) {
     ASSERT_EQ(r.targets.size(), 1u);
     EXPECT_FALSE(r.detected_region.empty());
   }
+}
+
+TEST(Engine, TheSourceInUsePicksItsCamera) {
+  const Pose truth{0, 0, 30, 40, -20, 800};
+  Settings s = binaryScene(truth);
+  // The File source's camera: twice the image plane distance of the virtual one's. A target
+  // facing the camera then looks the same twice as far away (Tz doubled), its centre at
+  // the same Tx, Ty (the image of X at 2 Tz through 2 d0 is that of X at Tz through d0).
+  s.camera(SourceKind::File).image_plane_distance_mm = 2.0 * s.camera(SourceKind::Virtual).image_plane_distance_mm;
+  auto source = makeVirtualSource(s);
+  Frame frame;
+  ASSERT_EQ(source->next(frame), Status::Ok);
+  ASSERT_EQ(s.source, SourceKind::Virtual);
+  Engine engine(s);
+  FrameResult r;
+  engine.process(frame, r);
+  ASSERT_EQ(r.status, Status::Ok) << statusName(r.status);
+  EXPECT_LT((translation(truth) - translation(*r.pose)).norm(), 0.005 * truth.tz_mm);
+
+  s.source = SourceKind::File;
+  engine.setSettings(s);
+  engine.resetTracking();
+  engine.process(frame, r);
+  ASSERT_EQ(r.status, Status::Ok) << statusName(r.status);
+  EXPECT_NEAR(r.pose->tz_mm, 2.0 * truth.tz_mm, 0.01 * truth.tz_mm);
+  EXPECT_NEAR(r.pose->tx_mm, truth.tx_mm, 0.01 * truth.tz_mm);
+  EXPECT_NEAR(r.pose->ty_mm, truth.ty_mm, 0.01 * truth.tz_mm);
+  EXPECT_LT(rotationAngleBetweenDeg(rotationMatrix(truth), rotationMatrix(*r.pose)), 1.0);
+
+  // And back: the virtual camera again.
+  s.source = SourceKind::Virtual;
+  engine.setSettings(s);
+  engine.resetTracking();
+  engine.process(frame, r);
+  ASSERT_EQ(r.status, Status::Ok) << statusName(r.status);
+  EXPECT_NEAR(r.pose->tz_mm, truth.tz_mm, 0.005 * truth.tz_mm);
 }
 
 TEST(Engine, ApplicationLevelStopsAfterTheChosenStage) {
@@ -199,7 +235,7 @@ TEST(Engine, TrackedRegionAlwaysHoldsTheTarget) {
       ASSERT_EQ(r.status, Status::Ok) << "frame " << i << ": " << statusName(r.status);
       if (r.search_region.area() < r.image_size.area()) {
         ++tracked;
-        const cv::Rect2d box = projectedTargetBox(s.camera, s.target, *r.truth);
+        const cv::Rect2d box = projectedTargetBox(s.camera(), s.target, *r.truth);
         const cv::Rect2d region(r.search_region);
         if ((box & region).area() >= box.area() - 1e-6)
           ++inside;

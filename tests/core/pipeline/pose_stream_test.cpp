@@ -166,6 +166,46 @@ TEST(PoseStream, OpenTrackAnglesFollowItsAxes) {
   EXPECT_LT((M.transpose() * E * M - rotationMatrix(p)).norm(), 1e-9);
 }
 
+// A datagram read back as OpenTrack reads it: six little-endian doubles, whatever this
+// machine's byte order.
+std::array<double, 6> decodeOpenTrack(const std::string& datagram) {
+  std::array<double, 6> v{};
+  EXPECT_EQ(datagram.size(), 48u);
+  for (std::size_t k = 0; k < 6 && datagram.size() >= 8 * (k + 1); ++k) {
+    std::uint64_t bits = 0;
+    for (int b = 7; b >= 0; --b) bits = (bits << 8) | static_cast<std::uint8_t>(datagram[8 * k + static_cast<std::size_t>(b)]);
+    std::memcpy(&v[k], &bits, sizeof bits);
+  }
+  return v;
+}
+
+// docs/streaming.md's table, one axis at a time, through a real socket: x = Tx/10,
+// y = -Ty/10, z = Tz/10 in cm; yaw = Ry, pitch = -Rx, roll = Rz in degrees.
+TEST(PoseStream, OpenTrackDatagramsDecodeToTheDocumentedAxes) {
+  Receiver receiver;
+  PoseStream stream;
+  std::string error;
+  ASSERT_EQ(stream.open(loopback(receiver.port(), StreamFormat::OpenTrack), error), Status::Ok) << error;
+  const std::array<Pose, 4> poses{Pose{0, 0, 0, 40, -30, 900}, Pose{0, 20, 0, 0, 0, 700}, Pose{10, 0, 0, 0, 0, 700},
+                                  Pose{0, 0, -35, -5, 12.5, 1234}};
+  const std::array<std::array<double, 6>, 4> expected{{{4, 3, 90, 0, 0, 0},
+                                                       {0, 0, 70, 20, 0, 0},
+                                                       {0, 0, 70, 0, -10, 0},
+                                                       {-0.5, -1.25, 123.4, 0, 0, -35}}};
+  for (const Pose& p : poses) {
+    FrameResult r;
+    r.status = Status::Ok;
+    r.pose = p;
+    stream.send(r);
+  }
+  const auto got = receiver.drain();
+  ASSERT_EQ(got.size(), poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const auto v = decodeOpenTrack(got[i]);
+    for (std::size_t k = 0; k < 6; ++k) EXPECT_NEAR(v[k], expected[i][k], 1e-9) << "pose " << i << ", value " << k;
+  }
+}
+
 TEST(PoseStream, OpenTrackSendsFramesWithAPoseOnly) {
   Receiver receiver;
   PoseStream stream;

@@ -14,7 +14,7 @@ namespace {
 // A grey virtual frame of the target at `pose`.
 cv::Mat render(const Settings& s, const Pose& pose) {
   cv::Mat image;
-  renderTarget(s.camera, s.target, s.virtual_scene, pose, image);
+  renderTarget(s.camera(), s.target, s.virtual_scene, pose, image);
   return image;
 }
 
@@ -137,7 +137,7 @@ TEST(StageChain, FindsSpotsTwoPixelsAcrossAtTwoAndAHalfMetres) {
   s.target.spot_radius_mm = 3.2;
   s.virtual_scene.blur_sigma_px = 0.8;
   s.virtual_scene.noise_sigma = 2.0;
-  const double spot_px = 2.0 * s.target.spot_radius_mm * s.camera.fu() / 2500.0;
+  const double spot_px = 2.0 * s.target.spot_radius_mm * s.camera().fu() / 2500.0;
   ASSERT_LT(spot_px, 2.1);
   const Pose poses[] = {{20, -10, 30, 50, -40, 2500}, {-15, 25, -120, -200, 100, 2500}, {5, 5, 170, 150, 120, 2500},
                         {30, 0, 60, 0, 0, 2500},      {0, -30, -60, -100, -150, 2500}};

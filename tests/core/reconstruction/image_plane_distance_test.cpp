@@ -62,12 +62,12 @@ TEST(ImagePlaneDistance, RecoversTheKnownD0OfVirtualFrames) {
   Settings settings;
   settings.pipeline.reconstruction.contour_mode = ContourMode::SubPixel;
   for (double d0 : {6.0, 8.0, 12.5}) {
-    settings.camera.image_plane_distance_mm = d0;
-    for (const Pose& truth : {testing::makePose(settings.camera, 600, 30, 20, 10, 300, 250),
-                              testing::makePose(settings.camera, 1100, 10, -50, 100, 350, 220)}) {
+    settings.camera().image_plane_distance_mm = d0;
+    for (const Pose& truth : {testing::makePose(settings.camera(), 600, 30, 20, 10, 300, 250),
+                              testing::makePose(settings.camera(), 1100, 10, -50, 100, 350, 220)}) {
       cv::Mat image;
-      renderTarget(settings.camera, settings.target, settings.virtual_scene, truth, image);
-      const Ellipse detected = testing::seenRimEllipse(settings.camera, settings.target, truth);
+      renderTarget(settings.camera(), settings.target, settings.virtual_scene, truth, image);
+      const Ellipse detected = testing::seenRimEllipse(settings.camera(), settings.target, truth);
       ReconstructionConfig config = reconstructionConfig(settings);
       ReconstructionWorkspace ws;
       ReconstructionResult result;

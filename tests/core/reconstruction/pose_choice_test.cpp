@@ -29,8 +29,8 @@ struct PoseChoiceTest : ::testing::Test {
     settings.virtual_scene.noise_sigma = 4.0;
   }
   Status run(const Pose& pose, std::uint64_t seed, const Pose* expected = nullptr) {
-    renderTarget(settings.camera, settings.target, settings.virtual_scene, pose, image, seed);
-    return reconstructTarget(reconstructionConfig(settings), image, seenRimEllipse(settings.camera, settings.target, pose),
+    renderTarget(settings.camera(), settings.target, settings.virtual_scene, pose, image, seed);
+    return reconstructTarget(reconstructionConfig(settings), image, seenRimEllipse(settings.camera(), settings.target, pose),
                              128, ws, result, expected);
   }
   // Far targets (2.2-2.4 m, rim radius about 17 px) tilted 15-50 deg: where the spots' few
@@ -39,7 +39,7 @@ struct PoseChoiceTest : ::testing::Test {
     std::vector<Pose> poses;
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> z(2200, 2400), tilt(15, 50), rz(-180, 180), u(150, 490), v(120, 360);
-    for (int i = 0; i < 40; ++i) poses.push_back(makePose(settings.camera, z(rng), tilt(rng), rz(rng), rz(rng), u(rng), v(rng)));
+    for (int i = 0; i < 40; ++i) poses.push_back(makePose(settings.camera(), z(rng), tilt(rng), rz(rng), rz(rng), u(rng), v(rng)));
     return poses;
   }
 };
@@ -87,7 +87,7 @@ TEST_F(PoseChoiceTest, NearlyEqualCandidatesAreNotAmbiguous) {
   settings.pipeline.reconstruction.ambiguity_ratio = 1e6;
   settings.virtual_scene.blur_sigma_px = 0.0;
   settings.virtual_scene.noise_sigma = 0.0;
-  const Pose truth = makePose(settings.camera, 600, 0.5, 20, 30, 320, 240);
+  const Pose truth = makePose(settings.camera(), 600, 0.5, 20, 30, 320, 240);
   ASSERT_EQ(run(truth, 1), Status::Ok);
   EXPECT_LT(rotationErrorDeg(truth, result.pose), 1.0);
 }
@@ -97,11 +97,11 @@ TEST_F(PoseChoiceTest, NearlyEqualCandidatesAreNotAmbiguous) {
 TEST_F(PoseChoiceTest, AMovedSpotIsRefusedAsInconsistent) {
   settings.virtual_scene.blur_sigma_px = 0.0;
   settings.virtual_scene.noise_sigma = 0.0;
-  const Pose truth = makePose(settings.camera, 700, 30, 40, 60, 320, 240);
+  const Pose truth = makePose(settings.camera(), 700, 30, 40, 60, 320, 240);
   ASSERT_EQ(run(truth, 1), Status::Ok);
   EXPECT_LT(result.spot_error_px, 0.2);
   EXPECT_LT(result.rim_error_px, 0.2);
-  const Ellipse rim = seenRimEllipse(settings.camera, settings.target, truth);
+  const Ellipse rim = seenRimEllipse(settings.camera(), settings.target, truth);
   const cv::Point2d centre = {result.spots.centre_spot.x(), result.spots.centre_spot.y()};
   const double spot_px = settings.target.spot_radius_mm / settings.target.radius_mm * rim.b;
   // Paint the spot over with the disk's white and draw it again 0.2 R further along -X.

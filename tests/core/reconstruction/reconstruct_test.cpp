@@ -28,12 +28,12 @@ struct ReconstructTest : ::testing::Test {
   cv::Mat image;
   std::mt19937 rng{21};
 
-  void SetUp() override { settings.camera.distortion = kThesisCameraDistortion; }
+  void SetUp() override { settings.camera().distortion = kThesisCameraDistortion; }
 
   // The rim's ellipse as a detector would report it: the true one, a little off.
   Ellipse detectedFor(const Pose& pose) {
     std::uniform_real_distribution<double> shift(-0.6, 0.6), scale(-0.01, 0.01);
-    Ellipse e = seenRimEllipse(settings.camera, settings.target, pose);
+    Ellipse e = seenRimEllipse(settings.camera(), settings.target, pose);
     e.cx += shift(rng);
     e.cy += shift(rng);
     e.a *= 1 + scale(rng);
@@ -42,14 +42,14 @@ struct ReconstructTest : ::testing::Test {
     return e;
   }
   Status run(const Pose& pose, std::uint64_t seed = 0) {
-    renderTarget(settings.camera, settings.target, settings.virtual_scene, pose, image, seed);
+    renderTarget(settings.camera(), settings.target, settings.virtual_scene, pose, image, seed);
     return reconstructTarget(settings, image, detectedFor(pose), 128, ws, result);
   }
   // Poses across the study's range, including the awkward ones: fronto-parallel and
   // almost so, Rz at and near +-180 deg, the steepest tilt, near and far, off-centre.
   std::vector<Pose> poseGrid() {
     std::vector<Pose> poses;
-    const CameraModel& cam = settings.camera;
+    const CameraModel& cam = settings.camera();
     int k = 0;
     for (double z : {400.0, 750.0, 1150.0})
       for (double tilt : {0.0, 0.3, 20.0, 45.0, 60.0})
@@ -131,7 +131,7 @@ TEST_F(ReconstructTest, RoundTripBinaryFullPathModWithDistortion) {
 }
 
 TEST_F(ReconstructTest, RoundTripGreyFullPathModWithoutDistortion) {
-  settings.camera.distortion = {};
+  settings.camera().distortion = {};
   settings.virtual_scene.mode = RenderMode::Grey;
   settings.pipeline.reconstruction.contour_mode = ContourMode::FullPathMod;
   settings.pipeline.rethreshold.method = ThresholdMethod::Manual;
@@ -184,7 +184,7 @@ TEST_F(ReconstructTest, RoundTripBinaryFullPathOrg) {
 // The camera model belongs to one image size: a frame of another size (a camera switched to
 // 320x240 with the 640x480 model) is refused before anything is measured on it.
 TEST_F(ReconstructTest, FrameOfAnotherSizeThanTheCameraModel) {
-  CameraModel small = settings.camera;
+  CameraModel small = settings.camera();
   small.width = 320;
   small.height = 240;
   small.principal_point_px = {159.5, 119.5};
@@ -199,7 +199,7 @@ TEST_F(ReconstructTest, FrameOfAnotherSizeThanTheCameraModel) {
   EXPECT_EQ(result.steps.pose, Status::Stopped);
   // With its own model the same frame is solved.
   Settings own = settings;
-  own.camera = small;
+  own.camera() = small;
   ASSERT_EQ(reconstructTarget(own, image, e, 128, ws, result), Status::Ok);
   EXPECT_LT(rotationErrorDeg(truth, result.pose), 0.5);
   // Through the engine, as the GUI and the CLI run it: the frame's row names the error.
@@ -216,9 +216,9 @@ TEST_F(ReconstructTest, FrameOfAnotherSizeThanTheCameraModel) {
 // Strong distortion, target near a corner: without the correction the pose is off.
 TEST_F(ReconstructTest, DistortionCorrectionMatters) {
   const Distortion& d = kThesisCameraDistortion;
-  settings.camera.distortion = {2.5 * d.k1, 2.5 * d.k2, 2.5 * d.p1, 2.5 * d.p2};
+  settings.camera().distortion = {2.5 * d.k1, 2.5 * d.k2, 2.5 * d.p1, 2.5 * d.p2};
   settings.pipeline.reconstruction.contour_mode = ContourMode::SubPixel;
-  const Pose truth = makePose(settings.camera, 700, 30, 20, 40, 90, 80);
+  const Pose truth = makePose(settings.camera(), 700, 30, 20, 40, 90, 80);
   ASSERT_EQ(run(truth), Status::Ok);
   const double withRot = rotationErrorDeg(truth, result.pose);
   const double withPos = positionErrorPercent(truth, result.pose);
@@ -243,7 +243,7 @@ TEST_F(ReconstructTest, DistortionCorrectionMatters) {
 
 TEST_F(ReconstructTest, ResultHoldsWhatWasUsed) {
   settings.pipeline.reconstruction.contour_mode = ContourMode::SubPixel;
-  const Pose truth = makePose(settings.camera, 800, 35, 10, 30, 300, 260);
+  const Pose truth = makePose(settings.camera(), 800, 35, 10, 30, 300, 260);
   ASSERT_EQ(run(truth), Status::Ok);
   EXPECT_EQ(result.status, Status::Ok);
   for (Status s : {result.steps.crop, result.steps.threshold, result.steps.contour, result.steps.spots,
@@ -261,14 +261,14 @@ TEST_F(ReconstructTest, ResultHoldsWhatWasUsed) {
   EXPECT_LT((check.conic - result.conic).norm() * (check.conic + result.conic).norm(), 1e-12);
   // The ideal points are the seen ones corrected: distorting them gives the seen ones back.
   for (std::size_t i = 0; i < result.contour.size(); i += 17)
-    EXPECT_LT((distortPixel(settings.camera, result.contour_ideal[i]) - result.contour[i]).norm(), 0.05);
-  EXPECT_LT((distortPixel(settings.camera, result.offset_spot_ideal) - result.spots.offset_spot).norm(), 0.05);
+    EXPECT_LT((distortPixel(settings.camera(), result.contour_ideal[i]) - result.contour[i]).norm(), 0.05);
+  EXPECT_LT((distortPixel(settings.camera(), result.offset_spot_ideal) - result.spots.offset_spot).norm(), 0.05);
 }
 
 TEST_F(ReconstructTest, NamedErrorsAndTheStepThatGaveThem) {
-  const Pose truth = makePose(settings.camera, 800, 20, 10, 30, 320, 240);
-  const Ellipse e = seenRimEllipse(settings.camera, settings.target, truth);
-  renderTarget(settings.camera, settings.target, settings.virtual_scene, truth, image);
+  const Pose truth = makePose(settings.camera(), 800, 20, 10, 30, 320, 240);
+  const Ellipse e = seenRimEllipse(settings.camera(), settings.target, truth);
+  renderTarget(settings.camera(), settings.target, settings.virtual_scene, truth, image);
 
   EXPECT_EQ(reconstructTarget(settings, cv::Mat(), e, 128, ws, result), Status::EmptyFrame);
   EXPECT_EQ(result.steps.crop, Status::EmptyFrame);
@@ -300,7 +300,7 @@ TEST_F(ReconstructTest, NamedErrorsAndTheStepThatGaveThem) {
   TargetGeometry plain = settings.target;
   plain.spot_radius_mm = 0;
   cv::Mat disk;
-  renderTarget(settings.camera, plain, settings.virtual_scene, truth, disk);
+  renderTarget(settings.camera(), plain, settings.virtual_scene, truth, disk);
   EXPECT_EQ(reconstructTarget(settings, disk, e, 128, ws, result), Status::SpotsNotFound);
   EXPECT_EQ(result.steps.contour, Status::Ok);
   EXPECT_EQ(result.steps.spots, Status::SpotsNotFound);
@@ -315,7 +315,7 @@ TEST_F(ReconstructTest, NamedErrorsAndTheStepThatGaveThem) {
   cv::Mat moved;
   TargetGeometry far = settings.target;
   far.spot_offset_mm = 40;
-  renderTarget(settings.camera, far, settings.virtual_scene, truth, moved);
+  renderTarget(settings.camera(), far, settings.virtual_scene, truth, moved);
   EXPECT_EQ(reconstructTarget(settings, moved, e, 128, ws, result), Status::SpotsNotFound);
   EXPECT_EQ(result.steps.fit, Status::Ok);
   EXPECT_EQ(result.steps.pose, Status::SpotsNotFound);
@@ -336,7 +336,7 @@ TEST_F(ReconstructTest, RoundTripThroughTheDetectionStage) {
   int k = 0;
   for (const Pose& truth : poseGrid()) {
     if (testing::viewAngleDeg(truth) > 62.0) continue;  // the study's range
-    renderTarget(settings.camera, settings.target, settings.virtual_scene, truth, frame.image, ++k);
+    renderTarget(settings.camera(), settings.target, settings.virtual_scene, truth, frame.image, ++k);
     frame.index = k;
     engine.process(frame, result);
     ASSERT_EQ(result.status, Status::Ok) << truth.tz_mm << " " << truth.rx_deg << " " << truth.ry_deg;

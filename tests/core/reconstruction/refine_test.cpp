@@ -197,17 +197,17 @@ struct RefineReconstructTest : ::testing::Test {
   cv::Mat image;
 
   void SetUp() override {
-    settings.camera.distortion = kThesisCameraDistortion;
+    settings.camera().distortion = kThesisCameraDistortion;
     settings.virtual_scene.noise_sigma = 2.0;
     settings.virtual_scene.blur_sigma_px = 0.6;
   }
   Status run(const Pose& truth, std::uint64_t seed) {
-    renderTarget(settings.camera, settings.target, settings.virtual_scene, truth, image, seed);
-    return reconstructTarget(settings, image, testing::seenRimEllipse(settings.camera, settings.target, truth), 128,
+    renderTarget(settings.camera(), settings.target, settings.virtual_scene, truth, image, seed);
+    return reconstructTarget(settings, image, testing::seenRimEllipse(settings.camera(), settings.target, truth), 128,
                              ws, result);
   }
   double rimErrorOf(const Pose& pose) const {
-    const Eigen::Matrix3d C = imageConicOfTargetCircle(settings.camera, pose, 0, 0, settings.target.radius_mm);
+    const Eigen::Matrix3d C = imageConicOfTargetCircle(settings.camera(), pose, 0, 0, settings.target.radius_mm);
     double sum = 0;
     for (const Eigen::Vector2d& p : result.contour_ideal) {
       const Eigen::Vector3d h(p.x(), p.y(), 1.0), g = C * h;
@@ -221,7 +221,7 @@ struct RefineReconstructTest : ::testing::Test {
 TEST_F(RefineReconstructTest, RenderedFramesOffAndOn) {
   std::vector<double> off, on, offHeadOn, onHeadOn;
   std::uint64_t seed = 0;
-  for (const Pose& truth : poses(settings.camera)) {
+  for (const Pose& truth : poses(settings.camera())) {
     ++seed;
     settings.pipeline.reconstruction.refine_pose = false;
     ASSERT_EQ(run(truth, seed), Status::Ok) << truth.tz_mm << " " << truth.rz_deg;
@@ -236,7 +236,7 @@ TEST_F(RefineReconstructTest, RenderedFramesOffAndOn) {
     EXPECT_LT(rotationErrorDeg(truth, result.pose), headOn ? 0.6 : 0.4) << truth.tz_mm << " " << truth.rz_deg;
     EXPECT_LT(positionErrorPercent(truth, result.pose), 0.3);
     // The self-check's measures describe the pose reported.
-    const std::array<double, 2> spots = spotReprojectionErrors(settings.camera, settings.target, result.pose,
+    const std::array<double, 2> spots = spotReprojectionErrors(settings.camera(), settings.target, result.pose,
                                                                result.centre_spot_ideal, result.offset_spot_ideal);
     EXPECT_NEAR(result.spot_error_px, std::max(spots[0], spots[1]), 1e-9);
     EXPECT_NEAR(result.rim_error_px, rimErrorOf(result.pose), 1e-9);
@@ -258,7 +258,7 @@ TEST_F(RefineReconstructTest, NeverLeavesTheSelfChecksBounds) {
   ReconstructionOptions& o = settings.pipeline.reconstruction;
   int kept = 0, refused = 0;
   std::uint64_t seed = 100;
-  for (const Pose& truth : poses(settings.camera)) {
+  for (const Pose& truth : poses(settings.camera())) {
     ++seed;
     o.refine_pose = false;
     o.max_spot_error_px = o.max_rim_error_px = 1.0;
@@ -283,7 +283,7 @@ TEST_F(RefineReconstructTest, NeverLeavesTheSelfChecksBounds) {
   std::printf("bounds at the analytic pose's own errors: %d refined poses kept, %d refused\n", kept, refused);
 
   // Directly: a spot bound of zero refuses every refined pose.
-  const Pose truth = makePose(settings.camera, 700, 12, 70, 10, 300, 260);
+  const Pose truth = makePose(settings.camera(), 700, 12, 70, 10, 300, 260);
   o.refine_pose = false;
   o.max_spot_error_px = o.max_rim_error_px = 1.0;
   ASSERT_EQ(run(truth, 7), Status::Ok);

@@ -19,8 +19,8 @@ TEST(SettingsKill, SaveKilledAnywhereLeavesTheOldOrTheNewFile) {
   const fs::path dir = test::freshDir("settings_kill");
   const std::string path = (dir / "settings.json").string();
   Settings a, b;
-  b.camera.width = 800;
-  b.camera.height = 600;
+  b.camera().width = 800;
+  b.camera().height = 600;
   b.pipeline.tracking.data_points = 7;
   const std::string text_a = settingsToJson(a), text_b = settingsToJson(b);
   std::string error;

@@ -27,7 +27,7 @@ TEST(Settings, DefaultsRoundTrip) {
   Settings a;
   a.pipeline.threshold.method = ThresholdMethod::Manual;
   a.pipeline.threshold.manual_value = 77;
-  a.camera.distortion = kThesisCameraDistortion;
+  a.camera().distortion = kThesisCameraDistortion;
   a.virtual_scene.initial_pose.rz_deg = 33;
   a.pipeline.tracking.mode = TrackingMode::Parameters3D;
   const std::string text = settingsToJson(a);
@@ -36,7 +36,101 @@ TEST(Settings, DefaultsRoundTrip) {
   ASSERT_EQ(settingsFromJson(text, b, err), Status::Ok) << err;
   EXPECT_EQ(settingsToJson(b), text);
   EXPECT_EQ(b.pipeline.threshold.manual_value, 77);
-  EXPECT_DOUBLE_EQ(b.camera.distortion.k2, kThesisCameraDistortion.k2);
+  EXPECT_DOUBLE_EQ(b.camera().distortion.k2, kThesisCameraDistortion.k2);
+}
+
+// Each source keeps its own camera model through a save and a load (thesis A.3).
+TEST(Settings, ACameraPerSourceSurvivesSaveAndLoad) {
+  Settings a;
+  a.camera(SourceKind::File).distortion = kThesisCameraDistortion;
+  a.camera(SourceKind::File).image_plane_distance_mm = 8.5;
+  CameraModel& card = a.camera(SourceKind::Camera);
+  card.width = 768;
+  card.height = 576;
+  card.principal_point_px = {383.5, 287.5};
+  card.pixel_size_mm = {0.0086, 0.0083};
+  card.image_plane_distance_mm = 12.0;
+  card.distortion = {-1e-7, 0.0, 2e-6, -1e-6};
+  a.source = SourceKind::Camera;
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / "settings_cameras";
+  fs::create_directories(dir);
+  const std::string path = (dir / "cameras.json").string();
+  std::string err;
+  ASSERT_EQ(saveSettings(path, a, err), Status::Ok) << err;
+  Settings b;
+  ASSERT_EQ(loadSettings(path, b, err), Status::Ok) << err;
+  EXPECT_EQ(settingsToJson(b), settingsToJson(a));  // every key of every source's camera
+  EXPECT_EQ(b.camera(SourceKind::File).distortion.k2, kThesisCameraDistortion.k2);
+  EXPECT_EQ(b.camera(SourceKind::Camera).pixel_size_mm, card.pixel_size_mm);
+  EXPECT_EQ(b.camera(SourceKind::Camera).distortion.p2, -1e-6);
+  EXPECT_EQ(b.camera(SourceKind::Camera).width, 768);
+  EXPECT_EQ(b.camera(SourceKind::Virtual).width, CameraModel{}.width);
+  // The source in use is the running program's, not the file's.
+  EXPECT_EQ(b.source, SourceKind::Virtual);
+  EXPECT_EQ(settingsToJson(a).find("\n  \"source\":"), std::string::npos);  // no top-level key
+  EXPECT_NE(findSettingKey("cameras.camera.distortion.p1"), nullptr);
+  EXPECT_EQ(settingKeyOf(a, &a.camera(SourceKind::Camera).principal_point_px[1])->path,
+            "cameras.camera.principal_point_px[1]");
+}
+
+// An older file has one "camera": every source takes it, and "cameras" beside it still
+// gives a source its own.
+TEST(Settings, AnOldFilesOneCameraServesEverySource) {
+  Settings s;
+  std::string err;
+  ASSERT_EQ(settingsFromJson(R"({"camera": {"width": 768, "height": 576, "image_plane_distance_mm": 9.5,
+                                            "distortion": {"k1": -2e-7}}})",
+                             s, err),
+            Status::Ok)
+      << err;
+  for (const SourceKind k : kSourceKinds) {
+    EXPECT_EQ(s.camera(k).width, 768);
+    EXPECT_EQ(s.camera(k).image_plane_distance_mm, 9.5);
+    EXPECT_EQ(s.camera(k).distortion.k1, -2e-7);
+    EXPECT_EQ(s.camera(k).principal_point_px, CameraModel{}.principal_point_px);  // not given: kept
+  }
+  // Written back the new way.
+  const std::string text = settingsToJson(s);
+  EXPECT_EQ(text.find("\n  \"camera\":"), std::string::npos);  // top level: "cameras" only
+  EXPECT_NE(text.find("\n  \"cameras\":"), std::string::npos);
+  Settings again;
+  ASSERT_EQ(settingsFromJson(text, again, err), Status::Ok) << err;
+  EXPECT_EQ(again.camera(SourceKind::File).width, 768);
+
+  ASSERT_EQ(settingsFromJson(R"({"camera": {"image_plane_distance_mm": 9.5},
+                                 "cameras": {"file": {"image_plane_distance_mm": 16.0}}})",
+                             s, err),
+            Status::Ok)
+      << err;
+  EXPECT_EQ(s.camera(SourceKind::File).image_plane_distance_mm, 16.0);
+  EXPECT_EQ(s.camera(SourceKind::Camera).image_plane_distance_mm, 9.5);
+  EXPECT_EQ(s.camera(SourceKind::Virtual).image_plane_distance_mm, 9.5);
+  // Errors name the key as the file has it.
+  EXPECT_NE(loadError(R"({"cameras": {"camera": {"width": 0}}})").find("cameras.camera.width: value 0 out of range"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"cameras": {"tv": {}}})").find("cameras.tv: unknown key"), std::string::npos);
+  EXPECT_NE(loadError(R"({"cameras": {"file": {"width": 16384, "height": 16384}}})")
+                .find("cameras.file.width, cameras.file.height: "),
+            std::string::npos);
+}
+
+TEST(Settings, ACaptureCardsInputAndStandard) {
+  Settings a;
+  a.camera_source.input = 2;
+  a.camera_source.standard = TvStandard::Ntsc;
+  Settings b;
+  std::string err;
+  ASSERT_EQ(settingsFromJson(settingsToJson(a), b, err), Status::Ok) << err;
+  EXPECT_EQ(b.camera_source.input, 2);
+  EXPECT_EQ(b.camera_source.standard, TvStandard::Ntsc);
+  EXPECT_EQ(Settings{}.camera_source.input, -1);  // the device's own, untouched
+  EXPECT_EQ(Settings{}.camera_source.standard, TvStandard::Keep);
+  EXPECT_NE(loadError(R"({"camera_source": {"standard": "PAL-M"}})")
+                .find("camera_source.standard: unknown value \"PAL-M\" (expected one of: keep, pal, ntsc, secam)"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"camera_source": {"input": -2}})").find("camera_source.input: value -2 out of range"),
+            std::string::npos);
 }
 
 // The constant-velocity motion's velocities and wrap-around box (thesis A.2) under virtual.motion.
@@ -165,7 +259,7 @@ TEST(Settings, MissingKeysKeepDefaults) {
   ASSERT_EQ(settingsFromJson(R"({"target": {"radius_mm": 40}})", s, err), Status::Ok);
   EXPECT_DOUBLE_EQ(s.target.radius_mm, 40.0);
   EXPECT_DOUBLE_EQ(s.target.spot_offset_mm, TargetGeometry{}.spot_offset_mm);
-  EXPECT_EQ(s.camera.width, 640);
+  EXPECT_EQ(s.camera().width, 640);
 }
 
 TEST(Settings, ErrorsNameTheKey) {
@@ -198,10 +292,10 @@ TEST(Settings, NumberBeyondADoubleNamesTheKey) {
   const std::string path = (dir / "huge.json").string();
   ASSERT_TRUE(writeFileAtomically(path, "{\n  \"camera\": {\"image_plane_distance_mm\": 1e400}\n}\n", err)) << err;
   Settings s;
-  s.camera.image_plane_distance_mm = 12.0;
+  s.camera().image_plane_distance_mm = 12.0;
   EXPECT_EQ(loadSettings(path, s, err), Status::InvalidSettings);
   EXPECT_EQ(err.rfind(path + ": camera.image_plane_distance_mm: ", 0), 0u) << err;
-  EXPECT_DOUBLE_EQ(s.camera.image_plane_distance_mm, 12.0);
+  EXPECT_DOUBLE_EQ(s.camera().image_plane_distance_mm, 12.0);
 }
 
 // A syntax error says where the document broke, by key as well as line and column.
@@ -234,7 +328,7 @@ TEST(Settings, ImageSizeIsBounded) {
   EXPECT_EQ(err.rfind("camera.width, camera.height: 16384x16384 is 256 megapixels", 0), 0u) << err;
   Settings s;
   ASSERT_EQ(settingsFromJson(R"({"camera": {"width": 8192, "height": 8192}})", s, err), Status::Ok) << err;
-  EXPECT_EQ(s.camera.width, 8192);
+  EXPECT_EQ(s.camera().width, 8192);
 }
 
 TEST(Settings, FailedLoadLeavesSettingsUntouched) {
@@ -404,9 +498,9 @@ TEST(SettingKeys, AFieldsAddressNamesItsKey) {
   const SettingKey* trace = settingKeyOf(s, &s.pipeline.ellipse.trace_inlier_px);
   ASSERT_NE(trace, nullptr);
   EXPECT_EQ(trace->path, "pipeline.ellipse.trace_inlier_px");
-  const SettingKey* v0 = settingKeyOf(s, &s.camera.principal_point_px[1]);
+  const SettingKey* v0 = settingKeyOf(s, &s.camera().principal_point_px[1]);
   ASSERT_NE(v0, nullptr);
-  EXPECT_EQ(v0->path, "camera.principal_point_px[1]");
+  EXPECT_EQ(v0->path, "cameras.virtual.principal_point_px[1]");  // the source in use's: Virtual by default
   EXPECT_EQ(settingKeyOf(s, &s.pipeline.tracking.mode)->path, "pipeline.tracking.mode");
   // A value outside this Settings object, even the same field of another, has no key.
   Settings other;

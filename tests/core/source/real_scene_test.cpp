@@ -60,7 +60,7 @@ double tiltDeg(const Pose& pose) {
 
 Settings thesisLens() {
   Settings s;
-  s.camera.distortion = kThesisCameraDistortion;
+  s.camera().distortion = kThesisCameraDistortion;
   return s;
 }
 
@@ -83,13 +83,13 @@ TEST(RealScene, TheTargetIsWhereTheTruthPoseProjectsIt) {
   const Settings s = thesisLens();
   const cv::Mat bg = texturedBackground({640, 480}, 1) * 0.4;  // dark, so the disk stands out alone
   const TargetLook look{220, 25, 130.0};
-  const Pose poses[] = {poseAlongRay(s.camera, {320, 240}, 600, 0, 0, 30),
-                        poseAlongRay(s.camera, {180, 330}, 900, 50, 70, -100),
-                        poseAlongRay(s.camera, {470, 150}, 1300, 35, 200, 170)};
+  const Pose poses[] = {poseAlongRay(s.camera(), {320, 240}, 600, 0, 0, 30),
+                        poseAlongRay(s.camera(), {180, 330}, 900, 50, 70, -100),
+                        poseAlongRay(s.camera(), {470, 150}, 1300, 35, 200, 170)};
   for (const Pose& pose : poses) {
-    ASSERT_TRUE(cardInFrame(s.camera, s.target, look.card_size_mm, pose, 2.0));
+    ASSERT_TRUE(cardInFrame(s.camera(), s.target, look.card_size_mm, pose, 2.0));
     cv::Mat scene;
-    composeTarget(bg, s.camera, s.target, look, pose, scene);
+    composeTarget(bg, s.camera(), s.target, look, pose, scene);
     cv::Mat binary;
     cv::threshold(scene, binary, 0.5 * (look.white + look.black), 255, cv::THRESH_BINARY);
     binary.convertTo(binary, CV_8U);
@@ -101,7 +101,7 @@ TEST(RealScene, TheTargetIsWhereTheTruthPoseProjectsIt) {
     std::vector<cv::Point2f> rim;
     for (int k = 0; k < 360; ++k) {
       const double a = k * M_PI / 180.0;
-      rim.push_back(imageOf(s.camera, pose, s.target.radius_mm * std::cos(a), s.target.radius_mm * std::sin(a)));
+      rim.push_back(imageOf(s.camera(), pose, s.target.radius_mm * std::cos(a), s.target.radius_mm * std::sin(a)));
     }
     const cv::RotatedRect seen = cv::fitEllipse(disk);
     const cv::RotatedRect truth = cv::fitEllipse(rim);
@@ -110,10 +110,10 @@ TEST(RealScene, TheTargetIsWhereTheTruthPoseProjectsIt) {
     EXPECT_NEAR(std::max(seen.size.width, seen.size.height), std::max(truth.size.width, truth.size.height), 1.5);
     EXPECT_NEAR(std::min(seen.size.width, seen.size.height), std::min(truth.size.width, truth.size.height), 1.5);
     const auto at = [&](cv::Point2d p) { return scene.at<float>(cvRound(p.y), cvRound(p.x)); };
-    EXPECT_LT(at(imageOf(s.camera, pose, 0, 0)), look.black + 5);
-    EXPECT_LT(at(imageOf(s.camera, pose, s.target.spot_offset_mm, 0)), look.black + 5);
-    EXPECT_GT(at(imageOf(s.camera, pose, -s.target.spot_offset_mm, 0)), look.white - 5);
-    EXPECT_LT(at(imageOf(s.camera, pose, 0, 0.5 * (s.target.radius_mm + 65.0))), look.black + 5);  // the card
+    EXPECT_LT(at(imageOf(s.camera(), pose, 0, 0)), look.black + 5);
+    EXPECT_LT(at(imageOf(s.camera(), pose, s.target.spot_offset_mm, 0)), look.black + 5);
+    EXPECT_GT(at(imageOf(s.camera(), pose, -s.target.spot_offset_mm, 0)), look.white - 5);
+    EXPECT_LT(at(imageOf(s.camera(), pose, 0, 0.5 * (s.target.radius_mm + 65.0))), look.black + 5);  // the card
   }
 }
 
@@ -122,13 +122,13 @@ TEST(RealScene, ThePhotographShowsExactlyAroundTheCard) {
   const Settings s;
   const cv::Mat bg = texturedBackground({640, 480}, 2);
   const TargetLook look{200, 30, 130.0};
-  const Pose pose = poseAlongRay(s.camera, {330, 250}, 700, 30, 10, 20);
+  const Pose pose = poseAlongRay(s.camera(), {330, 250}, 700, 30, 10, 20);
   cv::Mat scene;
-  composeTarget(bg, s.camera, s.target, look, pose, scene);
+  composeTarget(bg, s.camera(), s.target, look, pose, scene);
   cv::Mat card = cv::Mat::zeros(bg.size(), CV_8UC1);
   std::vector<cv::Point> corners;
   for (const auto& [x, y] : {std::pair{-65, -65}, {65, -65}, {65, 65}, {-65, 65}})
-    corners.push_back(imageOf(s.camera, pose, x, y));
+    corners.push_back(imageOf(s.camera(), pose, x, y));
   cv::fillConvexPoly(card, corners, cv::Scalar(255));
   cv::Mat near_card, inside;
   cv::dilate(card, near_card, cv::Mat(), {-1, -1}, 2);
@@ -142,7 +142,7 @@ TEST(RealScene, ThePhotographShowsExactlyAroundTheCard) {
   // On the card only the target's own two levels (and the grey of its edges).
   cv::Mat other_bg = 255 - bg;
   cv::Mat scene2;
-  composeTarget(other_bg, s.camera, s.target, look, pose, scene2);
+  composeTarget(other_bg, s.camera(), s.target, look, pose, scene2);
   cv::minMaxLoc(cv::abs(scene - scene2), nullptr, &worst, nullptr, nullptr, inside);
   EXPECT_EQ(worst, 0.0);
 }
@@ -188,7 +188,7 @@ TEST(RealScene, APainterDrawsInTheTargetsPlace) {
   const Settings& s = scenes.settings();
   cv::Point centre;
   const ScenePainter square = [&](const cv::Mat& bg, const Pose& pose, const TargetLook& look, cv::Mat& scene) {
-    centre = imageOf(s.camera, pose, 0, 0);
+    centre = imageOf(s.camera(), pose, 0, 0);
     composeOver(
         bg,
         [&](int level, cv::Mat& out) {
@@ -213,8 +213,8 @@ TEST(RealScene, StillsKeepToTheirRanges) {
   const int n = 300;
   for (int i = 0; i < n; ++i) {
     const Pose pose = scenes.stillPose(11, i);
-    EXPECT_TRUE(cardInFrame(s.camera, s.target, s.virtual_scene.card_size_mm, pose, 2.0)) << i;
-    EXPECT_TRUE(targetInView(s.camera, s.target, pose)) << i;
+    EXPECT_TRUE(cardInFrame(s.camera(), s.target, s.virtual_scene.card_size_mm, pose, 2.0)) << i;
+    EXPECT_TRUE(targetInView(s.camera(), s.target, pose)) << i;
     EXPECT_GE(translation(pose).norm(), 400.0 - 1e-9);
     EXPECT_LE(translation(pose).norm(), 2500.0 + 1e-9);
     EXPECT_LE(tiltDeg(pose), 60.0 + 1e-9);
@@ -357,7 +357,7 @@ TEST(RealSceneVideo, MovesSmoothlyInRangeAndHidesTheTargetInTheMiddle) {
   Pose previous = video.poseAt(0);
   for (int i = 0; i < video.frames(); ++i) {
     const Pose pose = video.poseAt(i);
-    EXPECT_TRUE(cardInFrame(s.camera, s.target, s.virtual_scene.card_size_mm, pose, 2.0)) << i;
+    EXPECT_TRUE(cardInFrame(s.camera(), s.target, s.virtual_scene.card_size_mm, pose, 2.0)) << i;
     EXPECT_GE(translation(pose).norm(), 400.0 - 1e-6);
     EXPECT_LE(translation(pose).norm(), 1400.0 + 1e-6);
     EXPECT_LT((translation(pose) - translation(previous)).norm(), 40.0) << i;  // at most 1 m/s

@@ -90,7 +90,7 @@ TEST(VirtualSource, FramesCarryIndexTimeAndExactPose) {
     ASSERT_TRUE(f.truth.has_value());
     expectPose(*f.truth, virtualPoseAt(settings.virtual_scene, i / 20.0));
     cv::Mat expected;
-    renderTarget(settings.camera, settings.target, settings.virtual_scene, *f.truth, expected, i);
+    renderTarget(settings.camera(), settings.target, settings.virtual_scene, *f.truth, expected, i);
     EXPECT_EQ(cv::norm(f.image, expected, cv::NORM_INF), 0.0);
   }
   // Frame 10 is at t = 0.5 s, a quarter of the 2 s period: the sinusoid's crest.
@@ -131,9 +131,22 @@ TEST(VirtualSource, KeysSettingsAndRestartApplyFromTheNextFrame) {
   source->setContent(VirtualContent::Pattern);
   ASSERT_EQ(source->next(f), Status::Ok);
   cv::Mat expected;
-  renderPattern(settings.camera, settings.target, settings.pattern, settings.virtual_scene, *f.truth, expected, 1);
+  renderPattern(settings.camera(), settings.target, settings.pattern, settings.virtual_scene, *f.truth, expected, 1);
   EXPECT_EQ(cv::norm(f.image, expected, cv::NORM_INF), 0.0);
   EXPECT_NE(source->describe().find("pattern"), std::string::npos);
+}
+
+// The Virtual source renders through its own camera model, whichever source is in use.
+TEST(VirtualSource, RendersThroughItsOwnCamera) {
+  Settings settings;
+  settings.camera(SourceKind::Virtual).width = 320;
+  settings.camera(SourceKind::Virtual).height = 240;
+  settings.camera(SourceKind::Virtual).principal_point_px = {159.5, 119.5};
+  settings.source = SourceKind::File;  // the File source's 640 x 480 model in use
+  auto source = makeVirtualSource(settings);
+  Frame f;
+  ASSERT_EQ(source->next(f), Status::Ok);
+  EXPECT_EQ(f.image.size(), cv::Size(320, 240));
 }
 
 TEST(VirtualSource, KeysFromAnotherThreadWhileRendering) {
@@ -197,7 +210,7 @@ TEST(Samples, ReadableListedAndReproducible) {
   ASSERT_EQ(loadSettings(std::string(IMAGEPRO_DATA_DIR) + "/settings.json", settings, error), Status::Ok) << error;
   settings.virtual_scene.mode = RenderMode::Grey;
   cv::Mat rendered, stored;
-  renderTarget(settings.camera, settings.target, settings.virtual_scene, Pose{0, 0, 0, 0, 0, 800}, rendered);
+  renderTarget(settings.camera(), settings.target, settings.virtual_scene, Pose{0, 0, 0, 0, 0, 800}, rendered);
   ASSERT_EQ(readGreyImage(dir + "/sample01_facing.png", stored, error), Status::Ok) << error;
   EXPECT_EQ(cv::norm(rendered, stored, cv::NORM_INF), 0.0);
 }
