@@ -6,7 +6,7 @@
 # against the data-out rows. Fails when they disagree or memory grows by more than
 # MAX_SLOPE_KB_PER_MIN (default 64).
 #
-#   tools/soak.sh [FRAMES]      (default 20000, about 2-3 minutes; 500000 is about an hour)
+#   tools/soak.sh [FRAMES]      (default 20000; 1000000 took 14 min at about 1,000 frames/s)
 #
 # Environment: BUILD_DIR (default: build, already built), SOAK_DIR (default: a fresh
 # folder under the build), MAX_SLOPE_KB_PER_MIN.
