@@ -125,8 +125,10 @@ case "$mode" in
     cd "$build_dir"
     # The soak's memory slope means nothing under ASan (freed memory waits in quarantine).
     # halt_on_error: any report fails its test; Qt's and fontconfig's caches live to
-    # the process's end, which LeakSanitizer would take for leaks.
-    ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=1:detect_stack_use_after_return=1" \
+    # the process's end, which LeakSanitizer would take for leaks. QtTest would answer
+    # the abort of a report at exit by running gdb on itself over and over, until
+    # ctest's time-out: without its stack dump the test fails at once with the report.
+    QTEST_DISABLE_STACK_DUMP=1 ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=1:detect_stack_use_after_return=1" \
       LSAN_OPTIONS="suppressions=$root/tools/sanitizer/lsan.supp:print_suppressions=0" \
       UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
       QT_QPA_PLATFORM=offscreen ctest --output-on-failure -j "$jobs" --timeout 1800 -LE soak

@@ -87,6 +87,7 @@ class OutputTest : public QObject {
   void streamProblemIsNamedInTheStatusBar();
   void plotsRecordAndExport();
   void plotsRecordingIsBounded();
+  void histogramChartFreesItsSeries();
  private:
   std::unique_ptr<MainWindow> window_;
 };

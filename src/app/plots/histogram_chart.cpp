@@ -16,6 +16,7 @@ namespace imagepro::app {
 HistogramChart::HistogramChart(QWidget* parent)
     : QWidget(parent), chart_(new QChart), counts_(new QLineSeries), marker_(new QLineSeries), y_(new QValueAxis) {
   auto* area = new QAreaSeries(counts_);
+  counts_->setParent(area);  // an area series does not own its line series, nor does the chart
   area->setName(tr("pixels"));
   area->setBrush(QColor(90, 140, 210, 160));
   area->setPen(QPen(QColor(40, 90, 170), 1.0));
