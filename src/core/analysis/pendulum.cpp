@@ -47,10 +47,19 @@ SineFit fitSine(std::span<const double> t, std::span<const double> s, double ome
 // record's frequency resolution, then golden-section refinement around the best. The
 // scan's sines and cosines come from one rotation per sample and frequency step, so it
 // costs a few multiply-adds per sample and frequency (no subsampling, so no aliases).
+// A record with long gaps (frames missing, or a timestamp far off) would ask for more
+// frequencies than its samples can tell apart, and memory for each: the scan then takes
+// coarser steps, at most this many per sample (an even record needs about two).
+constexpr double kMaxScanStepsPerSample = 4.0;
+
 double bestSineOmega(std::span<const double> t, std::span<const double> s, double min_hz, double max_hz) {
   const double duration = t.back() - t.front();
-  const double step_hz = 1.0 / (4.0 * duration);
-  const std::size_t steps = static_cast<std::size_t>(std::max(0.0, (max_hz - min_hz) / step_hz)) + 1;
+  double span_hz = max_hz - min_hz;
+  if (!std::isfinite(span_hz) || span_hz < 0.0) span_hz = 0.0;
+  const double max_steps = kMaxScanStepsPerSample * static_cast<double>(t.size()) + 64.0;
+  double step_hz = 1.0 / (4.0 * duration);
+  if (!(step_hz > 0.0) || !std::isfinite(step_hz) || span_hz / step_hz > max_steps) step_hz = span_hz / max_steps;
+  const std::size_t steps = step_hz > 0.0 ? static_cast<std::size_t>(span_hz / step_hz) + 1 : 1;
   // Per frequency: sums of cc, ss, sc, c, s, y c, y s.
   std::vector<std::array<double, 7>> sums(steps, std::array<double, 7>{});
   double n = 0.0, sum_y = 0.0, sum_yy = 0.0;

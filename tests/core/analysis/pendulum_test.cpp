@@ -253,6 +253,20 @@ TEST(Pendulum, GravityFromAnExactTrajectory) {
   EXPECT_DOUBLE_EQ(a.g_m_s2, a.g_uncorrected_m_s2);
 }
 
+// One timestamp far off (a corrupt data-out row) made the period's frequency scan ask for
+// one step per 1/(4 x duration) up to the Nyquist frequency: over 10^8 steps, and
+// gigabytes, for a 300-frame record. The scan's steps are now bounded by the samples, and
+// the rest of the record still gives g.
+TEST(Pendulum, ATimestampFarOffCostsNoMoreThanTheRecord) {
+  const VirtualSceneOptions scene = pendulumScene(444.0, 15.0);
+  std::vector<PoseSample> swing = exactSwing(scene, 25.0, 300);
+  swing.back().t_s = 1e7;
+  PendulumAnalysis a;
+  ASSERT_EQ(analyzePendulum(swing, {}, a), Status::Ok);
+  EXPECT_EQ(a.frames, 300);
+  EXPECT_NEAR(a.g_m_s2, scene.pendulum.gravity_m_s2, 1e-3);
+}
+
 TEST(Pendulum, DegenerateSequencesGiveNamedErrors) {
   const VirtualSceneOptions scene = pendulumScene(444.0, 15.0);
   PendulumAnalysis a;
