@@ -70,7 +70,8 @@ TEST(CliIntrinsics, CalibratesAnAsymmetricGridAndWritesEveryFile) {
   const test::CliRun s = cli("settings --import-opencv-camera " + yaml.string() + " --out " + imported.string());
   ASSERT_EQ(s.exit_code, 0) << s.err;
   const auto& calibrated = settings["cameras"]["file"];
-  for (const auto& cam : nlohmann::json::parse(test::readText(imported))["cameras"]) {  // every source's
+  const nlohmann::json importedSettings = nlohmann::json::parse(test::readText(imported));
+  for (const auto& cam : importedSettings["cameras"]) {  // every source's
     EXPECT_NEAR(cam["image_plane_distance_mm"].get<double>(), calibrated["image_plane_distance_mm"].get<double>(), 1e-9);
     EXPECT_NEAR(cam["distortion"]["k1"].get<double>(), calibrated["distortion"]["k1"].get<double>(), 1e-15);
   }
