@@ -95,6 +95,7 @@ BenchOptions benchOptions(const Args& args) {
   options.format = args.valueOr("format", "text");
   if (options.format != "text" && options.format != "json") throw UsageError("--format must be text or json");
   options.backgrounds = args.valueOr("backgrounds", defaultBackgroundsDir());
+  options.pipeline = loadConfig(args).pipeline;
   const std::string resolution = args.valueOr("resolution", "640x480");
   if (resolution == "all") {
     options.sizes = {{640, 480}, {1280, 720}, {1920, 1080}};
@@ -236,13 +237,16 @@ void runBench(const BenchOptions& options, const PeerTiming& time_peers) {
     r.size = size;
     {  // each kind's frames are freed before the next kind's are rendered
       std::fprintf(stderr, "rendering %d frames at %dx%d ...\n", options.frames, size.width, size.height);
-      r.kinds.push_back(timeKind(renderBenchFrames(size, options.frames), time_peers));
+      BenchSequence rendered = renderBenchFrames(size, options.frames);
+      rendered.settings.pipeline = options.pipeline;
+      r.kinds.push_back(timeKind(rendered, time_peers));
       if (text) printBenchText(r.kinds.back(), size);
     }
     std::fprintf(stderr, "rendering %d real-scene frames at %dx%d ...\n", options.frames, size.width, size.height);
     BenchSequence real;
     std::string error;
     if (renderRealBenchFrames(size, options.frames, options.backgrounds, real, error)) {
+      real.settings.pipeline = options.pipeline;
       r.kinds.push_back(timeKind(real, time_peers));
       if (text) printBenchText(r.kinds.back(), size);
     } else {

@@ -73,13 +73,16 @@ struct BenchResolution {
 };
 
 // --frames (at least 10, default 200), --format (text or json), --resolution (WxH or all:
-// 640x480, 1280x720, 1920x1080), --backgrounds (the real scenes' photographs); UsageError
-// naming the option otherwise.
+// 640x480, 1280x720, 1920x1080), --backgrounds (the real scenes' photographs), --config
+// (the pipeline); UsageError naming the option otherwise, InputError for a bad config.
 struct BenchOptions {
   int frames = 200;
   std::string format = "text";
   std::vector<cv::Size> sizes;
   std::string backgrounds;
+  // The pipeline timed: --config FILE's (its methods and parameters; the bench scene keeps
+  // its own camera and scene), the defaults without one.
+  PipelineOptions pipeline;
 };
 // The options benchOptions reads.
 inline const std::vector<std::string> kBenchOptionNames{"frames", "resolution", "format", "backgrounds"};

@@ -19,10 +19,11 @@ const std::vector<Frame>& frames() {
   return sequence;
 }
 
-void runEngine(benchmark::State& state, TrackingMode mode, ContourMode contour) {
+void runEngine(benchmark::State& state, TrackingMode mode, ContourMode contour, bool coarse = true) {
   cv::setNumThreads(1);
   Settings s = benchSceneSettings({640, 480});
   s.pipeline.tracking.mode = mode;
+  s.pipeline.binarization.coarse_search = coarse;
   s.pipeline.reconstruction.contour_mode = contour;
   Engine engine(s);
   FrameResult r;
@@ -39,12 +40,17 @@ void runEngine(benchmark::State& state, TrackingMode mode, ContourMode contour) 
 }
 
 void FullFrame(benchmark::State& state) { runEngine(state, TrackingMode::Off, ContourMode::SubPixel); }
+// The baseline of the coarse search (stage_chain.h): every pass at full size.
+void FullFrameWithoutCoarseSearch(benchmark::State& state) {
+  runEngine(state, TrackingMode::Off, ContourMode::SubPixel, false);
+}
 void Tracked(benchmark::State& state) { runEngine(state, TrackingMode::Corners2D, ContourMode::SubPixel); }
 void TrackedFullPathMod(benchmark::State& state) {
   runEngine(state, TrackingMode::Corners2D, ContourMode::FullPathMod);
 }
 
 BENCHMARK(FullFrame)->Unit(benchmark::kMicrosecond);
+BENCHMARK(FullFrameWithoutCoarseSearch)->Unit(benchmark::kMicrosecond);
 BENCHMARK(Tracked)->Unit(benchmark::kMicrosecond);
 BENCHMARK(TrackedFullPathMod)->Unit(benchmark::kMicrosecond);
 

@@ -18,6 +18,7 @@
 #include "core/pipeline/engine.h"
 #include "core/reconstruction/features.h"
 #include "core/segmentation/histogram.h"
+#include "core/segmentation/reduce.h"
 #include "core/segmentation/threshold.h"
 #include "core/source/bench_scene.h"
 #include "core/source/virtual_renderer.h"
@@ -213,6 +214,33 @@ void Binarize640x480(benchmark::State& state) {
   }
 }
 BENCHMARK(Binarize640x480)->ComputeStatistics("min", minimum);
+
+// The coarse search's reduced image (reduce.h) beside OpenCV's area resize to the same
+// size: factor 2 (640 x 480 frames), 3 and 6 (1920 x 1080 frames: here on a 640 x 480 one).
+void Reduce640x480(benchmark::State& state) {
+  const auto& f = frames();
+  const int k = static_cast<int>(state.range(0));
+  cv::Mat reduced;
+  std::vector<std::uint16_t> ws;
+  int i = 0;
+  for (auto _ : state) {
+    reduceByBlockMean(f.grey[i++ % kFrames], k, reduced, ws);
+    benchmark::DoNotOptimize(reduced.data);
+  }
+}
+BENCHMARK(Reduce640x480)->ArgName("factor")->Arg(2)->Arg(3)->Arg(6)->ComputeStatistics("min", minimum);
+
+void OpenCvResizeArea640x480(benchmark::State& state) {
+  const auto& f = frames();
+  const int k = static_cast<int>(state.range(0));
+  cv::Mat reduced;
+  int i = 0;
+  for (auto _ : state) {
+    cv::resize(f.grey[i++ % kFrames], reduced, cv::Size(640 / k, 480 / k), 0, 0, cv::INTER_AREA);
+    benchmark::DoNotOptimize(reduced.data);
+  }
+}
+BENCHMARK(OpenCvResizeArea640x480)->ArgName("factor")->Arg(2)->Arg(3)->Arg(6)->ComputeStatistics("min", minimum);
 
 // Side by side with OpenCV's Otsu, which also histograms and binarizes.
 void HistogramAtModBinarize(benchmark::State& state) {

@@ -62,6 +62,8 @@ QWidget* thresholdPanel(SettingsBinder& binder) {
   form->addRow(QObject::tr("Window"), window);
   form->addRow(QObject::tr("Offset"), offset);
   form->addRow(QObject::tr("Min contrast"), contrast);
+  form->addRow(named(binder.check(QObject::tr("Coarse search first"), [b](Settings& s) -> auto& { return b(s).coarse_search; }),
+                     "coarseSearch", QObject::tr("Search a whole frame reduced (2x at 640x480) first, and at full size only when that misses the target")));
   layout->addLayout(form);
   binder.onAnyUpdate([&binder, window, offset, contrast] {
     const bool local = binder.model().pipeline.binarization.mode != Binarization::Global;

@@ -41,7 +41,7 @@ void Engine::resetTracking() {
   impl_->last_pose.reset();
 }
 const Frame& Engine::lastFrame() const { return impl_->frame; }
-const cv::Mat& Engine::binaryImage() const { return impl_->chain.binary; }
+const cv::Mat& Engine::binaryImage() const { return regionBinary(impl_->chain); }
 const EdgeList& Engine::edges() const { return impl_->chain.edges; }
 const Paths& Engine::paths() const { return impl_->chain.paths; }
 

@@ -1,8 +1,12 @@
 #include "core/pipeline/stage_chain.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 
 #include "core/segmentation/histogram.h"
+#include "core/segmentation/image_buffer.h"
+#include "core/segmentation/reduce.h"
 #include "core/segmentation/threshold.h"
 
 namespace imagepro {
@@ -44,7 +48,7 @@ void keepDisplayFeatures(const ReconstructionResult& r, FrameResult& out) {
 // binary image in chain.binary, as far as the application level asks. Stage times add
 // up over the passes of one frame.
 void findTargets(const Settings& settings, const cv::Mat& grey, cv::Rect inside, TargetsToReconstruct which,
-                 StageChain& chain, FrameResult& out) {
+                 ConnectivityWorkspace& connectivity_ws, StageChain& chain, FrameResult& out) {
   const PipelineOptions& o = settings.pipeline;
   out.targets.clear();
   out.detected_region = {};
@@ -72,7 +76,7 @@ void findTargets(const Settings& settings, const cv::Mat& grey, cv::Rect inside,
 
   start = Clock::now();
   out.reached = ApplicationLevel::Connectivity;
-  out.status = connectPaths(o.connectivity, chain.edges, grey.size(), chain.paths, chain.connectivity_ws);
+  out.status = connectPaths(o.connectivity, chain.edges, grey.size(), chain.paths, connectivity_ws);
   out.paths = chain.paths.pathCount();
   out.times[Stage::Connectivity] += microsecondsSince(start);
   if (!ok(out.status) || !reached(o.level, ApplicationLevel::Ellipse)) return;
@@ -122,6 +126,24 @@ void restore(const PassOutcome& pass, FrameResult& out) {
   out.contour_points.clear();
 }
 
+// The passes swap their buffers with the spare ones, so either set may next hold the
+// busiest pass's: each vector is given the larger capacity of the two, and once the
+// frames have been seen no pass allocates.
+template <class T>
+void sameCapacity(std::vector<T>& a, std::vector<T>& b) {
+  const std::size_t capacity = std::max(a.capacity(), b.capacity());
+  a.reserve(capacity);
+  b.reserve(capacity);
+}
+
+void sameCapacities(StageChain& chain, FrameResult& out) {
+  sameCapacity(chain.edges, chain.spare.edges);
+  sameCapacity(chain.paths.pixels, chain.spare.paths.pixels);
+  sameCapacity(chain.paths.starts, chain.spare.paths.starts);
+  sameCapacity(chain.detections, chain.spare.detections);
+  sameCapacity(out.targets, chain.spare.targets);
+}
+
 // Swaps the reported pass's buffers (and the targets it reported) with the spare ones.
 void swapPasses(StageChain& chain, FrameResult& out) {
   std::swap(chain.binary, chain.spare.binary);
@@ -129,6 +151,7 @@ void swapPasses(StageChain& chain, FrameResult& out) {
   std::swap(chain.paths, chain.spare.paths);
   std::swap(chain.detections, chain.spare.detections);
   std::swap(out.targets, chain.spare.targets);
+  std::swap(chain.reported_factor, chain.spare.factor);
 }
 
 // The reconstruction chain of thesis 5.2.2 for the target found (or every target found).
@@ -160,6 +183,52 @@ void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsTo
   out.times[Stage::Reconstruction] += microsecondsSince(start);
 }
 
+// The full-size coordinate of the centre of a reduced pixel's block: block x covers
+// [k x, k x + k) of the region starting at `origin`.
+double enlarged(double x, int k, int origin) { return origin + k * x + 0.5 * (k - 1); }
+
+// A reduced pass's detections (and the targets reported from them) in full-image
+// coordinates, so the reconstruction crops the frame itself.
+void enlargeDetections(int k, cv::Point origin, StageChain& chain, FrameResult& out) {
+  out.targets.clear();
+  for (TargetDetection& d : chain.detections) {
+    d.ellipse.cx = enlarged(d.ellipse.cx, k, origin.x);
+    d.ellipse.cy = enlarged(d.ellipse.cy, k, origin.y);
+    d.ellipse.a *= k;
+    d.ellipse.b *= k;
+    d.conic = conicFromEllipse(d.ellipse);
+    d.sampson_px *= k;
+    d.bbox = cv::Rect(origin.x + k * d.bbox.x, origin.y + k * d.bbox.y, k * d.bbox.width, k * d.bbox.height);
+    out.targets.push_back(summary(d));
+  }
+  if (ok(out.status) && !chain.detections.empty()) out.detected_region = chain.detections.front().bbox;
+}
+
+// The reported reduced pass's edges and paths at their blocks' centres in the frame.
+void moveReportedEdges(cv::Rect inside, StageChain& chain) {
+  const int k = chain.reported_factor;
+  if (k <= 1) return;
+  auto move = [&](EdgePixel& p) {
+    p.x = static_cast<std::int16_t>(inside.x + k * p.x + (k - 1) / 2);
+    p.y = static_cast<std::int16_t>(inside.y + k * p.y + (k - 1) / 2);
+  };
+  for (EdgePixel& p : chain.edges) move(p);
+  for (EdgePixel& p : chain.paths.pixels) move(p);
+}
+
+// One pass of the chain: a binarization of the searched region or of its reduced image.
+struct Pass {
+  bool local = false;
+  int factor = 1;
+};
+
+// Whether a missed pass's report says more than another's: it got further through the
+// stages, or as far at full size where the other was reduced.
+bool saysMore(ApplicationLevel reached, int factor, ApplicationLevel other, int otherFactor) {
+  if (reached != other) return static_cast<int>(reached) > static_cast<int>(other);
+  return factor == 1 && otherFactor > 1;
+}
+
 }  // namespace
 
 void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect region, TargetsToReconstruct which,
@@ -181,6 +250,9 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
   chain.edges.clear();
   chain.paths.clear();
   chain.detections.clear();
+  chain.reported_factor = 1;
+  chain.region = {};
+  sameCapacities(chain, out);
 
   if (grey.empty() || grey.type() != CV_8UC1) {
     out.status = Status::EmptyFrame;
@@ -196,6 +268,15 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
   // binarized into the chain's own buffer (never the frame's: another view may share it).
   const cv::Mat searched = grey(inside);
   computeHistogram(searched, out.histogram);
+  // Only a search that ends in a pose can tell a reduced pass's miss from the target's
+  // absence; the stages' own views (detect, edges) keep the frame's size. A tracked
+  // region is small already, and its changing size would change the reduced image's,
+  // whose connectivity index would then be rebuilt on every frame.
+  const int k = o.binarization.coarse_search && which == TargetsToReconstruct::Best &&
+                        reached(o.level, ApplicationLevel::Reconstruction) && inside == whole
+                    ? coarseFactor(inside.width)
+                    : 1;
+  if (k > 1) reduceByBlockMean(searched, k, chain.reduced, chain.reduce_ws);
   out.times[Stage::Crop] = microsecondsSince(start);
   if (!reached(o.level, ApplicationLevel::Threshold)) return;
 
@@ -204,37 +285,89 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
   start = Clock::now();
   out.reached = ApplicationLevel::Threshold;
   out.status = computeThreshold(o.threshold, out.histogram, out.threshold);
-  const bool local_first = o.binarization.mode == Binarization::Local;
-  if (local_first) {
-    binarizeLocal(searched, o.binarization, chain.local_ws, chain.binary);
-    out.status = Status::Ok;
-  } else if (ok(out.status)) {
-    binarize(searched, out.threshold, chain.binary);
+  const Binarization mode = o.binarization.mode;
+  if (mode != Binarization::Local && !ok(out.status)) {
+    out.times[Stage::Threshold] = microsecondsSince(start);
+    return;
   }
+  out.status = Status::Ok;
   out.times[Stage::Threshold] = microsecondsSince(start);
-  if (!ok(out.status) || !reached(o.level, ApplicationLevel::Edges)) return;
+  if (!reached(o.level, ApplicationLevel::Edges)) {
+    // The binary image is still shown at this level.
+    if (mode == Binarization::Local) binarizeLocal(searched, o.binarization, chain.local_ws, chain.binary);
+    else binarize(searched, out.threshold, chain.binary);
+    out.times[Stage::Threshold] = microsecondsSince(start);
+    return;
+  }
 
-  findTargets(settings, grey, inside, which, chain, out);
-  if (ok(out.status)) reconstructTargets(settings, grey, which, chain, out, expected);
-  if (o.binarization.mode == Binarization::GlobalThenLocal && missed(out, which)) {
-    // Threshold cycling on a miss: the second pass, on the local binary image, into the
-    // spare buffers.
-    const PassOutcome first = outcome(out);
-    swapPasses(chain, out);
+  // The passes in order: reduced before full size, and with global-then-local the
+  // global threshold before the local one at each size (threshold cycling on a miss).
+  std::array<Pass, 4> passes{};
+  int count = 0;
+  for (const int factor : {k, 1}) {
+    if (mode != Binarization::Local) passes[count++] = {false, factor};
+    if (mode != Binarization::Global) passes[count++] = {true, factor};
+    if (k == 1) break;
+  }
+
+  bool haveMiss = false;  // a missed pass kept in the spare buffers
+  PassOutcome bestMiss;
+  for (int i = 0; i < count; ++i) {
+    const Pass& pass = passes[i];
+    if (i > 0) {
+      // The last pass missed: keep it when it says more than the one kept.
+      if (!haveMiss || saysMore(out.reached, chain.reported_factor, bestMiss.reached, chain.spare.factor)) {
+        bestMiss = outcome(out);
+        swapPasses(chain, out);
+        haveMiss = true;
+      }
+      out.pose.reset();
+      out.ambiguous_poses.reset();
+      out.contour_points.clear();
+    }
+    const cv::Mat& image = pass.factor > 1 ? chain.reduced : searched;
+    const cv::Rect passRegion = pass.factor > 1 ? cv::Rect(0, 0, image.cols, image.rows) : inside;
     start = Clock::now();
-    binarizeLocal(searched, o.binarization, chain.local_ws, chain.binary);
+    if (pass.local) binarizeLocal(image, o.binarization, chain.local_ws, chain.binary);
+    else binarize(image, out.threshold, chain.binary);
     out.times[Stage::Threshold] += microsecondsSince(start);
-    out.pose.reset();
-    out.ambiguous_poses.reset();
-    findTargets(settings, grey, inside, which, chain, out);
+    chain.reported_factor = pass.factor;
+    if (pass.factor > 1)
+      findTargets(settings, chain.reduced, passRegion, which, chain.reduced_connectivity_ws, chain, out);
+    else
+      findTargets(settings, grey, passRegion, which, chain.connectivity_ws, chain, out);
+    if (pass.factor > 1) enlargeDetections(pass.factor, inside.tl(), chain, out);
     if (ok(out.status)) reconstructTargets(settings, grey, which, chain, out, expected);
-    // Both missed: the report of the pass that got further (its status says more), the
-    // first on a tie.
-    if (missed(out, which) && static_cast<int>(out.reached) <= static_cast<int>(first.reached)) {
+    if (!missed(out, which)) break;
+    if (i + 1 == count && haveMiss &&
+        !saysMore(out.reached, chain.reported_factor, bestMiss.reached, chain.spare.factor)) {
+      // Every pass missed: the report of the one that said most.
       swapPasses(chain, out);
-      restore(first, out);
+      restore(bestMiss, out);
     }
   }
+  moveReportedEdges(inside, chain);
+  chain.region = inside;
+}
+
+const cv::Mat& regionBinary(StageChain& chain) {
+  const int k = chain.reported_factor;
+  if (k <= 1 || chain.binary.empty()) return chain.binary;
+  cv::Mat& enlarged = chain.enlarged_binary;
+  reuseBuffer(enlarged, chain.region.size(), allocationSize(enlarged));
+  // Row by row (cv::Mat::setTo allocates on every call); white where no whole block reached.
+  for (int y = 0; y < enlarged.rows; ++y) {
+    std::uint8_t* dst = enlarged.ptr<std::uint8_t>(y);
+    const int from = y / k;
+    int filled = 0;
+    if (from < chain.binary.rows) {
+      const std::uint8_t* src = chain.binary.ptr<std::uint8_t>(from);
+      filled = std::min(chain.binary.cols * k, enlarged.cols);
+      for (int x = 0; x < filled; ++x) dst[x] = src[x / k];
+    }
+    std::fill(dst + filled, dst + enlarged.cols, std::uint8_t{255});
+  }
+  return enlarged;
 }
 
 }  // namespace imagepro

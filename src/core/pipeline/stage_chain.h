@@ -13,10 +13,23 @@
 // found once more on the local binary image, and that pass is kept when it finds the
 // target, or, when both miss, when it got further through the stages.
 //
+// Coarse search (pipeline.binarization.coarse_search): a whole frame at least
+// 2 * kCoarseWidthPx wide (reduce.h), searched for the best target down to its pose, is
+// first searched reduced: each binarization's pass runs on the frame reduced k times
+// (k = coarseFactor(width): 2 at 640 x 480) before any runs on the frame itself. A
+// tracked region is searched at its own size. A
+// reduced pass finds the ellipse; the pose is then reconstructed from the frame itself
+// (the crop, its re-threshold, the sub-pixel rim and the spots), so a found pose is as
+// exact as the full pass's. A miss at the reduced size (a far target's rim or spots too
+// small, two targets) falls through to the full-size passes. When a reduced pass is the
+// one reported, its edges and paths are given at the centres of their k x k blocks, and
+// its binary image stays reduced in chain.binary: regionBinary enlarges it for a display.
+//
 // The chain stops after the settings' application level. Nothing here throws: every
 // outcome is a Status in the FrameResult.
 #include <opencv2/core.hpp>
 
+#include <cstdint>
 #include <vector>
 
 #include "core/connectivity/connectivity.h"
@@ -39,7 +52,7 @@ enum class TargetsToReconstruct : std::uint8_t { Best, Every };
 // allocation once grown). Valid until the next run; all coordinates are full-image.
 struct StageChain {
   // The pass whose result is reported (with global-then-local, maybe the second).
-  cv::Mat binary;  // the searched region binarized (region-sized)
+  cv::Mat binary;  // the searched region binarized (region-sized; reduced by reported_factor: regionBinary)
   EdgeList edges;
   Paths paths;
   std::vector<TargetDetection> detections;  // as the ellipse stage reported them
@@ -50,10 +63,19 @@ struct StageChain {
     Paths paths;
     std::vector<TargetDetection> detections;
     std::vector<TargetSummary> targets;
+    int factor = 1;
   } spare;
+  int reported_factor = 1;  // the reported pass's reduction (1: the region itself)
+  cv::Rect region;          // the searched region, clipped to the frame
+  cv::Mat reduced;          // the searched region reduced (coarse search)
+  cv::Mat enlarged_binary;  // where a reported reduced pass's binary image is enlarged
+  std::vector<std::uint16_t> reduce_ws;
   LocalThresholdWorkspace local_ws;
   EdgeWorkspace edge_ws;
   ConnectivityWorkspace connectivity_ws;
+  // The reduced passes' own: its index image has the reduced image's size, and sharing
+  // one would rebuild it at every change of size.
+  ConnectivityWorkspace reduced_connectivity_ws;
   EllipseWorkspace ellipse_ws;
   ReconstructionWorkspace reconstruction_ws;
   ReconstructionResult reconstruction;  // of the last target reconstructed
@@ -76,5 +98,11 @@ inline bool stageRan(const FrameResult& result, ApplicationLevel stage) {
 // the spots cannot (otherwise AmbiguousPose, both poses in out.ambiguous_poses).
 void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect region, TargetsToReconstruct which,
                    StageChain& chain, FrameResult& out, const Pose* expected = nullptr);
+
+// The last run's binary image at the searched region's size: chain.binary, or, when a
+// reduced pass was reported, that image enlarged block by block into
+// chain.enlarged_binary (white where the region's last rows and columns made no whole
+// block). Done on demand: only a display needs it, and it costs as much as a small frame.
+const cv::Mat& regionBinary(StageChain& chain);
 
 }  // namespace imagepro

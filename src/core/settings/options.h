@@ -87,6 +87,7 @@ struct BinarizationOptions {
   int window_px = 0;       // side of the local window; 0: a sixteenth of the image width
   double offset = 0.15;    // black: darker than the window mean m by more than offset * m ...
   int min_contrast = 12;   // ... and by more than this many grey levels
+  bool coarse_search = true;  // a full-frame search looks at the frame reduced first (stage_chain.h)
 };
 
 struct EllipseOptions {

@@ -141,6 +141,7 @@ void visitSettings(Visitor& v, Settings& s) {
       v.field("window_px", p.binarization.window_px, 0, 2047);
       v.field("offset", p.binarization.offset, 0.0, 1.0);
       v.field("min_contrast", p.binarization.min_contrast, 0, 255);
+      v.field("coarse_search", p.binarization.coarse_search);
     });
     v.field("edge_method", p.edge_method);
     v.field("connectivity", p.connectivity);

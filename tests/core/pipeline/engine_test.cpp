@@ -261,6 +261,9 @@ TEST(Engine, TrackedRegionIsReadInPlaceAndTheFrameStaysIntact) {
   s.virtual_scene.motion.amplitude = 100;
   s.virtual_scene.motion.period_s = 2;
   s.pipeline.tracking.mode = TrackingMode::Corners2D;
+  // The whole frames before tracking starts are compared too: at full size (a coarse
+  // search's binary image is the reduced one, enlarged: stage_chain_test.cpp).
+  s.pipeline.binarization.coarse_search = false;
   VirtualSource source(s);
   Engine engine(s);
   FrameResult r;

@@ -4,6 +4,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <cmath>
 #include <vector>
 
 #include "core/source/virtual_renderer.h"
@@ -160,6 +161,110 @@ TEST(StageChain, FindsSpotsTwoPixelsAcrossAtTwoAndAHalfMetres) {
   // tilted 20-30 deg may not tell its two poses apart). Without the model-guided search
   // all five were SpotsNotFound.
   EXPECT_GE(posed, 3);
+}
+
+}  // namespace
+}  // namespace imagepro
+
+namespace imagepro {
+namespace {
+
+// The coarse search (stage_chain.h): a clean frame is found on the reduced image, and the
+// pose, reconstructed from the frame itself, is the full-size search's to within the
+// noise of where the crop and the rim's crossings start.
+TEST(StageChainCoarse, TheReducedSearchGivesTheFullSizePose) {
+  Settings s;
+  s.virtual_scene.noise_sigma = 2.0;
+  s.virtual_scene.blur_sigma_px = 0.7;
+  Settings full = s;
+  full.pipeline.binarization.coarse_search = false;
+  for (const Pose& truth : {Pose{10, 25, -60, 40, -30, 700}, Pose{-30, 5, 100, -150, 80, 1400}, Pose{0, 40, 20, 120, 0, 2000}}) {
+    const cv::Mat grey = render(s, truth);
+    StageChain chain;
+    FrameResult coarse, whole;
+    runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, coarse);
+    const int factor = chain.reported_factor;
+    runStageChain(full, grey, {}, TargetsToReconstruct::Best, chain, whole);
+    ASSERT_EQ(coarse.status, Status::Ok) << statusName(coarse.status);
+    ASSERT_EQ(whole.status, Status::Ok) << statusName(whole.status);
+    EXPECT_EQ(factor, 2) << "found on the image reduced twice";
+    EXPECT_EQ(chain.reported_factor, 1);
+    // Measured: 0.006-0.07 deg and 0.02-0.16 mm apart, each 0.07-0.47 deg from the truth.
+    EXPECT_LT(rotationErrorDeg(*coarse.pose, *whole.pose), 0.2);
+    EXPECT_LT((translation(*coarse.pose) - translation(*whole.pose)).norm(), 5e-4 * truth.tz_mm);
+    EXPECT_LT(rotationErrorDeg(truth, *coarse.pose), 1.0);
+  }
+}
+
+// What a reduced pass reports is given at the frame's size: its edges and paths at their
+// blocks' centres, its binary image enlarged on demand.
+TEST(StageChainCoarse, AReducedPassIsShownAtTheFramesSize) {
+  Settings s;
+  const cv::Mat grey = render(s, Pose{15, -20, 45, 30, 20, 900});
+  StageChain chain;
+  FrameResult r;
+  runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, r);
+  ASSERT_EQ(r.status, Status::Ok) << statusName(r.status);
+  ASSERT_EQ(chain.reported_factor, 2);
+  ASSERT_EQ(chain.binary.size(), cv::Size(320, 240));
+  const cv::Mat& shown = regionBinary(chain);
+  ASSERT_EQ(shown.size(), grey.size());
+  for (int y = 0; y < shown.rows; ++y)
+    for (int x = 0; x < shown.cols; ++x)
+      ASSERT_EQ(shown.at<std::uint8_t>(y, x), chain.binary.at<std::uint8_t>(y / 2, x / 2)) << x << "," << y;
+  ASSERT_FALSE(chain.edges.empty());
+  EXPECT_EQ(chain.paths.pixels.size(), chain.edges.size());
+  for (const EdgePixel& p : chain.edges) {
+    ASSERT_TRUE(cv::Rect(0, 0, 640, 480).contains(cv::Point(p.x, p.y)));
+    ASSERT_EQ(p.x % 2, 0);  // the top-left pixel of the block: (k - 1) / 2 = 0 for k = 2
+    ASSERT_EQ(p.y % 2, 0);
+  }
+  // The detected region (the tracker's next search) is in the frame's coordinates: it
+  // holds the rim found at full size.
+  EXPECT_TRUE(r.detected_region.contains(cv::Point(static_cast<int>(std::lround(chain.reconstruction.ellipse.cx)),
+                                                   static_cast<int>(std::lround(chain.reconstruction.ellipse.cy)))));
+  const Ellipse& rim = chain.reconstruction.ellipse;
+  EXPECT_GE(r.detected_region.width, 2 * rim.b - 4);
+  EXPECT_LE(r.detected_region.width, 2 * rim.a + 4);
+}
+
+// Below the pose's stage nothing tells a reduced pass's miss from the target's absence:
+// the stages' own views (imagepro-cli detect, edges) search the frame itself. A tracked
+// region is searched at its own size.
+TEST(StageChainCoarse, AChainStoppingBeforeThePoseSearchesTheFullSize) {
+  Settings s;
+  s.pipeline.level = ApplicationLevel::Ellipse;
+  const cv::Mat grey = render(s, Pose{0, 0, 0, 0, 0, 800});
+  StageChain chain;
+  FrameResult r;
+  runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, r);
+  ASSERT_EQ(r.status, Status::Ok);
+  EXPECT_EQ(chain.reported_factor, 1);
+  EXPECT_EQ(chain.binary.size(), grey.size());
+  // A tracked region, even one as wide as the frame, is searched at its own size.
+  s.pipeline.level = ApplicationLevel::Reconstruction;
+  runStageChain(s, grey, cv::Rect(0, 60, 640, 360), TargetsToReconstruct::Best, chain, r);
+  ASSERT_EQ(r.status, Status::Ok) << statusName(r.status);
+  EXPECT_EQ(chain.reported_factor, 1);
+}
+
+// A target whose card shows as a ring one pixel wide: at half size the ring fades into
+// the white around it and the disk with it, so the reduced passes miss; the full-size
+// passes find it.
+TEST(StageChainCoarse, AMissAtTheReducedSizeFallsThroughToTheFullSize) {
+  Settings s;
+  s.virtual_scene.card_size_mm = 102.0;
+  s.virtual_scene.background_level = 230;
+  const Pose truth{0, 10, 30, 0, 0, 800};
+  const cv::Mat grey = render(s, truth);
+  StageChain chain;
+  FrameResult r;
+  runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, r);
+  ASSERT_EQ(r.status, Status::Ok) << statusName(r.status);
+  EXPECT_EQ(chain.reported_factor, 1) << "found by a full-size pass";
+  EXPECT_EQ(chain.binary.size(), grey.size());
+  EXPECT_LT(rotationErrorDeg(truth, *r.pose), 1.0);
+  EXPECT_LT((translation(truth) - translation(*r.pose)).norm(), 0.005 * truth.tz_mm);
 }
 
 }  // namespace
