@@ -93,7 +93,19 @@ void Engine::Impl::run(FrameResult& out) {
     }
     if (stream) region = tracker.estimate(o.tracking, settings.camera(), settings.target, t, grey.size()).value_or(region);
   }
-  runStageChain(settings, grey, region, TargetsToReconstruct::Best, chain, out, last_pose ? &*last_pose : nullptr);
+  const Pose* expected = last_pose ? &*last_pose : nullptr;
+  runStageChain(settings, grey, region, TargetsToReconstruct::Best, chain, out, expected);
+  if (!region.empty() && tracker.fromOneDetection() && !ok(out.status) && out.status != Status::AmbiguousPose &&
+      out.status != Status::AmbiguousTarget) {
+    // The region about a single detection was a guess (the target's motion is not known
+    // yet) and it missed: the whole frame is searched in the same frame, so the guess
+    // costs a region's search and never a frame without a pose. Its stage times add up.
+    const auto guessed = out.times;
+    runStageChain(settings, grey, cv::Rect(), TargetsToReconstruct::Best, chain, out, expected);
+    for (Stage s : {Stage::Crop, Stage::Threshold, Stage::Edges, Stage::Connectivity, Stage::Ellipse,
+                    Stage::Reconstruction})
+      out.times[s] += guessed[s];
+  }
   last_pose = out.pose;
 
   // The tracker learns from every frame whose ellipse stage ran, and from every failure.

@@ -9,6 +9,9 @@ namespace imagepro {
 
 namespace {
 
+// A target's image speed before two detections tell it, in box sizes per frame.
+constexpr double kUnknownSpeedPerBoxSize = 0.25;
+
 constexpr int kRimSamples = 48;
 
 // Brings an angle to within 180 degrees of `reference`, so angle series stay continuous.
@@ -78,8 +81,9 @@ void RegionTracker::observe(double t, const cv::Rect2d& box, const std::optional
 
 std::optional<cv::Rect> RegionTracker::estimate(const TrackingOptions& o, const CameraModel& camera,
                                                 const TargetGeometry& target, double t, cv::Size image) {
-  // One detection tells where the target was, not where it goes: track from two on.
-  if (o.mode == TrackingMode::Off || count_ < 2) return std::nullopt;
+  // One detection tells where the target was, not where it goes: the region about it is a
+  // guess (degree 0, no speed), which the engine backs with the whole frame when it misses.
+  if (o.mode == TrackingMode::Off || count_ < 1) return std::nullopt;
   const bool use3d = o.mode == TrackingMode::Parameters3D;
   if (use3d && !fromNewest(0).has_pose) return std::nullopt;
 
@@ -133,8 +137,11 @@ std::optional<cv::Rect> RegionTracker::estimate(const TrackingOptions& o, const 
   if (!(box.width > 0 && box.height > 0)) return std::nullopt;
   last_box_ = box;
 
-  // Speed of the box centre over the last two detections, pixels per frame.
-  double speed = 0.0;
+  // Speed of the box centre over the last two detections, pixels per frame. From one
+  // detection it is not known: a quarter of the box a frame is assumed (the tracking
+  // study's fastest motion, the pendulum, moves its box by about a seventh), so the guess
+  // still holds a moving target and costs a fraction of the whole frame.
+  double speed = kUnknownSpeedPerBoxSize * std::max(box.width, box.height);
   if (count_ >= 2) {
     const auto& a = fromNewest(0).corners;
     const auto& b = fromNewest(1).corners;

@@ -39,7 +39,10 @@ class RegionTracker {
   void observeMiss() { reset(); }
 
   // Region to search at time t, clipped to the image; nullopt means the whole image
-  // (tracking off, not enough history, or the estimate left the image).
+  // (tracking off, no detection yet, or the estimate left the image). From a single
+  // detection the region is that detection's box enlarged as for a target moving by a
+  // quarter of its box a frame (its speed is not known yet): a guess
+  // the caller should back with the whole image when it misses (fromOneDetection).
   std::optional<cv::Rect> estimate(const TrackingOptions& options, const CameraModel& camera,
                                    const TargetGeometry& target, double t, cv::Size image);
 
@@ -50,6 +53,7 @@ class RegionTracker {
   // The extrapolated bounding box of the last estimate, before enlargement (thesis x~_{N+1}).
   const std::optional<cv::Rect2d>& lastPredictedBox() const { return last_box_; }
   std::size_t samples() const { return count_; }
+  bool fromOneDetection() const { return count_ == 1; }
 
  private:
   struct Sample {

@@ -250,6 +250,32 @@ TEST(Engine, TrackedRegionAlwaysHoldsTheTarget) {
   }
 }
 
+// After one detection the next frame is searched about it (the target's motion is not
+// known yet): a target that stayed is found there, one that jumped away by the whole frame
+// in the same frame, so the guess never costs a pose.
+TEST(Engine, OneDetectionGivesARegionAndItsMissTheWholeFrame) {
+  Settings s;
+  s.virtual_scene.mode = RenderMode::Grey;
+  s.pipeline.tracking.mode = TrackingMode::Corners2D;
+  const Pose here{10, 20, 0, -150, -80, 900}, there{10, 20, 0, 170, 90, 900};
+  for (const bool jumps : {false, true}) {
+    Engine engine(s);
+    FrameResult first, second;
+    engine.process(render(s, here, 0), first);
+    ASSERT_EQ(first.status, Status::Ok) << statusName(first.status);
+    EXPECT_EQ(first.search_region, cv::Rect(0, 0, 640, 480));
+    engine.process(render(s, jumps ? there : here, 1), second);
+    ASSERT_EQ(second.status, Status::Ok) << "jumps " << jumps << ": " << statusName(second.status);
+    EXPECT_LT(rotationAngleBetweenDeg(rotationMatrix(jumps ? there : here), rotationMatrix(*second.pose)), 1.0);
+    if (jumps) {
+      EXPECT_EQ(second.search_region, cv::Rect(0, 0, 640, 480)) << "the region missed: the whole frame";
+    } else {
+      EXPECT_LT(second.search_region.area(), 640 * 480 / 4) << "searched about the first detection";
+      EXPECT_TRUE(second.search_region.contains(second.detected_region.tl()));
+    }
+  }
+}
+
 // A tracked region is read where it lies in the frame: its histogram and binary image
 // are those of the frame's pixels there, and the frame is never written.
 TEST(Engine, TrackedRegionIsReadInPlaceAndTheFrameStaysIntact) {

@@ -25,7 +25,11 @@ TEST(Tracker, OffOrEmptyMeansWholeImage) {
   TrackingOptions o;
   EXPECT_FALSE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 0.0, kImage).has_value());
   tracker.observe(0.0, {100, 100, 50, 50}, std::nullopt);
-  EXPECT_FALSE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 0.04, kImage).has_value());
+  // One detection: the region about it, enlarged as for a target moving by a quarter of
+  // its box a frame: 50 + 20 px + (0.1 + 0.02 * 12.5) * 50 = 87.5 px, centred, rounded outwards.
+  const auto guess = tracker.estimate(o, CameraModel{}, TargetGeometry{}, 0.04, kImage);
+  ASSERT_TRUE(guess.has_value());
+  EXPECT_EQ(*guess, cv::Rect(81, 81, 88, 88));
   o.mode = TrackingMode::Off;
   tracker.observe(0.04, {100, 100, 50, 50}, std::nullopt);
   EXPECT_FALSE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 0.08, kImage).has_value());
@@ -116,9 +120,13 @@ TEST(Tracker, MissRestartsFromTheNextDetection) {
   tracker.observeMiss();
   EXPECT_FALSE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 6, kImage).has_value());
   tracker.observe(7, {300, 300, 50, 50}, std::nullopt);
-  // One detection is not a track yet.
-  EXPECT_FALSE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 8, kImage).has_value());
+  // One detection: the region about it, as if it stood still (no memory of the old track).
+  EXPECT_TRUE(tracker.fromOneDetection());
+  const auto guess = tracker.estimate(o, CameraModel{}, TargetGeometry{}, 8, kImage);
+  ASSERT_TRUE(guess.has_value());
+  EXPECT_EQ(*guess, cv::Rect(300, 300, 50, 50));  // no enlargement in these options
   tracker.observe(8, {300, 300, 50, 50}, std::nullopt);
+  EXPECT_FALSE(tracker.fromOneDetection());
   const auto r = tracker.estimate(o, CameraModel{}, TargetGeometry{}, 9, kImage);
   ASSERT_TRUE(r.has_value());
   EXPECT_EQ(r->x, 300);  // no memory of the old track
