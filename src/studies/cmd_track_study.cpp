@@ -324,7 +324,7 @@ int run(const Args& args) {
      << " x size per px/frame of speed). *Inside*: frames whose searched region holds the whole projected target; "
         "the goal is every tracked frame, with a mean region of at most 10 % of the frame. From a single "
         "detection (the first frame, or the first after a loss) the next frame is searched about it, enlarged as "
-        "for a target moving by a quarter of its box a frame, and the whole frame at once when that misses; the "
+        "usual and by a quarter of its size on every side, and the whole frame at once when that misses; the "
         "estimation errors of the tables above count the estimates from two detections on.\n\n"
         "| motion | frames | target found | tracked frames | target wholly inside | mean region / frame |\n"
         "|---|---|---|---|---|---|\n";

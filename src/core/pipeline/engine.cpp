@@ -1,8 +1,10 @@
 #include "core/pipeline/engine.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "core/pipeline/stage_chain.h"
+#include "core/segmentation/reduce.h"
 #include "core/tracking/tracker.h"
 
 namespace imagepro {
@@ -13,6 +15,16 @@ using Clock = std::chrono::steady_clock;
 
 double microsecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+}
+
+// The region about a single detection is searched at full size, the whole frame on its
+// reduced image (coarse search). The guess pays while it holds at most twice that image's
+// pixels (the whole frame's search also counts and reduces every pixel), or half the frame
+// without it: measured on the bench's real scenes, a larger guess at 1920 x 1080 (a near
+// target's) cost more than the whole frame's search (tracked 1,203 -> 373 frames/s).
+bool guessPays(const cv::Rect& region, cv::Size frame, const BinarizationOptions& binarization) {
+  const int k = binarization.coarse_search ? coarseFactor(frame.width) : 1;
+  return static_cast<double>(region.area()) <= 2.0 * static_cast<double>(frame.area()) / std::max(4, k * k);
 }
 
 }  // namespace
@@ -91,7 +103,11 @@ void Engine::Impl::run(FrameResult& out) {
       tracker.reset();
       last_pose.reset();
     }
-    if (stream) region = tracker.estimate(o.tracking, settings.camera(), settings.target, t, grey.size()).value_or(region);
+    if (stream) {
+      const bool guess = tracker.fromOneDetection();
+      const auto estimated = tracker.estimate(o.tracking, settings.camera(), settings.target, t, grey.size());
+      if (estimated && (!guess || guessPays(*estimated, grey.size(), o.binarization))) region = *estimated;
+    }
   }
   const Pose* expected = last_pose ? &*last_pose : nullptr;
   runStageChain(settings, grey, region, TargetsToReconstruct::Best, chain, out, expected);

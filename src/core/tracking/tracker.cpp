@@ -9,8 +9,8 @@ namespace imagepro {
 
 namespace {
 
-// A target's image speed before two detections tell it, in box sizes per frame.
-constexpr double kUnknownSpeedPerBoxSize = 0.25;
+// How far a target may move in a frame before two detections tell it, in box sizes.
+constexpr double kUnknownMotionPerBoxSize = 0.25;
 
 constexpr int kRimSamples = 48;
 
@@ -137,17 +137,21 @@ std::optional<cv::Rect> RegionTracker::estimate(const TrackingOptions& o, const 
   if (!(box.width > 0 && box.height > 0)) return std::nullopt;
   last_box_ = box;
 
-  // Speed of the box centre over the last two detections, pixels per frame. From one
-  // detection it is not known: a quarter of the box a frame is assumed (the tracking
-  // study's fastest motion, the pendulum, moves its box by about a seventh), so the guess
-  // still holds a moving target and costs a fraction of the whole frame.
-  double speed = kUnknownSpeedPerBoxSize * std::max(box.width, box.height);
+  // Speed of the box centre over the last two detections, pixels per frame.
+  double speed = 0.0;
   if (count_ >= 2) {
     const auto& a = fromNewest(0).corners;
     const auto& b = fromNewest(1).corners;
     speed = 0.5 * std::hypot(a[0] + a[2] - b[0] - b[2], a[1] + a[3] - b[1] - b[3]);
   }
   cv::Rect2d region = enlargeRegion(box, o, speed);
+  if (count_ == 1) {
+    // From one detection the speed is not known: the region also reaches as far as the
+    // target could move in a frame, taken as a quarter of its box (the tracking study's
+    // fastest motion, the pendulum, moves its box by about a seventh).
+    const double dx = kUnknownMotionPerBoxSize * box.width, dy = kUnknownMotionPerBoxSize * box.height;
+    region = {region.x - dx, region.y - dy, region.width + 2 * dx, region.height + 2 * dy};
+  }
 
   // Damp shrinking: neither side may shrink by more than red % per frame (3.3.3).
   if (last_region_) {

@@ -40,8 +40,8 @@ class RegionTracker {
 
   // Region to search at time t, clipped to the image; nullopt means the whole image
   // (tracking off, no detection yet, or the estimate left the image). From a single
-  // detection the region is that detection's box enlarged as for a target moving by a
-  // quarter of its box a frame (its speed is not known yet): a guess
+  // detection the region is that detection's box enlarged as usual and by a quarter of its
+  // size on every side (how far it may move in a frame is not known yet): a guess
   // the caller should back with the whole image when it misses (fromOneDetection).
   std::optional<cv::Rect> estimate(const TrackingOptions& options, const CameraModel& camera,
                                    const TargetGeometry& target, double t, cv::Size image);

@@ -25,11 +25,11 @@ TEST(Tracker, OffOrEmptyMeansWholeImage) {
   TrackingOptions o;
   EXPECT_FALSE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 0.0, kImage).has_value());
   tracker.observe(0.0, {100, 100, 50, 50}, std::nullopt);
-  // One detection: the region about it, enlarged as for a target moving by a quarter of
-  // its box a frame: 50 + 20 px + (0.1 + 0.02 * 12.5) * 50 = 87.5 px, centred, rounded outwards.
+  // One detection: the region about it, enlarged as usual (20 px + 10 %) and by a quarter
+  // of its size on every side: 50 + 25 + 2 * 12.5 = 100 px, centred.
   const auto guess = tracker.estimate(o, CameraModel{}, TargetGeometry{}, 0.04, kImage);
   ASSERT_TRUE(guess.has_value());
-  EXPECT_EQ(*guess, cv::Rect(81, 81, 88, 88));
+  EXPECT_EQ(*guess, cv::Rect(75, 75, 100, 100));
   o.mode = TrackingMode::Off;
   tracker.observe(0.04, {100, 100, 50, 50}, std::nullopt);
   EXPECT_FALSE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 0.08, kImage).has_value());
@@ -120,11 +120,12 @@ TEST(Tracker, MissRestartsFromTheNextDetection) {
   tracker.observeMiss();
   EXPECT_FALSE(tracker.estimate(o, CameraModel{}, TargetGeometry{}, 6, kImage).has_value());
   tracker.observe(7, {300, 300, 50, 50}, std::nullopt);
-  // One detection: the region about it, as if it stood still (no memory of the old track).
+  // One detection: the region about it (no memory of the old track), a quarter of the box
+  // wider on every side even without the options' enlargement.
   EXPECT_TRUE(tracker.fromOneDetection());
   const auto guess = tracker.estimate(o, CameraModel{}, TargetGeometry{}, 8, kImage);
   ASSERT_TRUE(guess.has_value());
-  EXPECT_EQ(*guess, cv::Rect(300, 300, 50, 50));  // no enlargement in these options
+  EXPECT_EQ(*guess, cv::Rect(287, 287, 76, 76));  // 50 + 2 * 12.5 = 75, rounded outwards
   tracker.observe(8, {300, 300, 50, 50}, std::nullopt);
   EXPECT_FALSE(tracker.fromOneDetection());
   const auto r = tracker.estimate(o, CameraModel{}, TargetGeometry{}, 9, kImage);
