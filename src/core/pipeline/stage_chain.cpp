@@ -204,7 +204,8 @@ void enlargeDetections(int k, cv::Point origin, StageChain& chain, FrameResult& 
   if (ok(out.status) && !chain.detections.empty()) out.detected_region = chain.detections.front().bbox;
 }
 
-// The reported reduced pass's edges and paths at their blocks' centres in the frame.
+// The reported reduced pass's edges and paths in the frame, each at the pixel nearest its
+// k x k block's centre (rounded up and left: the top-left pixel for k = 2).
 void moveReportedEdges(cv::Rect inside, StageChain& chain) {
   const int k = chain.reported_factor;
   if (k <= 1) return;
@@ -272,11 +273,14 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
   // absence; the stages' own views (detect, edges) keep the frame's size. A tracked
   // region is small already, and its changing size would change the reduced image's,
   // whose connectivity index would then be rebuilt on every frame.
-  const int k = o.binarization.coarse_search && which == TargetsToReconstruct::Best &&
-                        reached(o.level, ApplicationLevel::Reconstruction) && inside == whole
-                    ? coarseFactor(inside.width)
-                    : 1;
-  if (k > 1) reduceByBlockMean(searched, k, chain.reduced, chain.reduce_ws);
+  int k = o.binarization.coarse_search && which == TargetsToReconstruct::Best &&
+                  reached(o.level, ApplicationLevel::Reconstruction) && inside == whole
+              ? coarseFactor(inside.width)
+              : 1;
+  if (k > 1) {
+    reduceByBlockMean(searched, k, chain.reduced, chain.reduce_ws);
+    if (chain.reduced.empty()) k = 1;  // a frame too flat to reduce (fewer rows than k)
+  }
   out.times[Stage::Crop] = microsecondsSince(start);
   if (!reached(o.level, ApplicationLevel::Threshold)) return;
 

@@ -16,14 +16,14 @@
 // Coarse search (pipeline.binarization.coarse_search): a whole frame at least
 // 2 * kCoarseWidthPx wide (reduce.h), searched for the best target down to its pose, is
 // first searched reduced: each binarization's pass runs on the frame reduced k times
-// (k = coarseFactor(width): 2 at 640 x 480) before any runs on the frame itself. A
-// tracked region is searched at its own size. A
-// reduced pass finds the ellipse; the pose is then reconstructed from the frame itself
-// (the crop, its re-threshold, the sub-pixel rim and the spots), so a found pose is as
-// exact as the full pass's. A miss at the reduced size (a far target's rim or spots too
-// small, two targets) falls through to the full-size passes. When a reduced pass is the
-// one reported, its edges and paths are given at the centres of their k x k blocks, and
-// its binary image stays reduced in chain.binary: regionBinary enlarges it for a display.
+// (k = coarseFactor(width): 2 at 640 x 480) before any runs on the frame itself. A tracked
+// region is searched at its own size. A reduced pass finds the ellipse; the pose is then
+// reconstructed from the frame itself (the crop, its re-threshold, the sub-pixel rim and
+// the spots), so a found pose is as exact as the full pass's. A miss at the reduced size
+// (a far target's rim too small, its spots merged) falls through to the full-size passes.
+// When a reduced pass is the one reported, its edges and paths are given at the pixels
+// nearest the centres of their k x k blocks, and its binary image stays reduced in
+// chain.binary: regionBinary enlarges it for a display.
 //
 // The chain stops after the settings' application level. Nothing here throws: every
 // outcome is a Status in the FrameResult.
