@@ -111,8 +111,7 @@ void Engine::Impl::run(FrameResult& out) {
   }
   const Pose* expected = last_pose ? &*last_pose : nullptr;
   runStageChain(settings, grey, region, TargetsToReconstruct::Best, chain, out, expected);
-  if (!region.empty() && tracker.fromOneDetection() && !ok(out.status) && out.status != Status::AmbiguousPose &&
-      out.status != Status::AmbiguousTarget) {
+  if (!region.empty() && tracker.fromOneDetection() && missedTarget(out, TargetsToReconstruct::Best)) {
     // The region about a single detection was a guess (the target's motion is not known
     // yet) and it missed: the whole frame is searched in the same frame, so the guess
     // costs a region's search and never a frame without a pose. Its stage times add up.

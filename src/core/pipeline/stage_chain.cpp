@@ -92,16 +92,6 @@ void findTargets(const Settings& settings, const cv::Mat& grey, cv::Rect inside,
   out.times[Stage::Ellipse] += microsecondsSince(start);
 }
 
-// Whether a pass missed the target: a failure after the threshold was found (no edges, no
-// target, a reconstruction that failed), or, with every target reconstructed, none that
-// reconstructed. Two targets (AmbiguousTarget) or two poses (AmbiguousPose) are findings
-// of the target, not misses.
-bool missed(const FrameResult& out, TargetsToReconstruct which) {
-  if (out.status == Status::AmbiguousTarget || out.status == Status::AmbiguousPose) return false;
-  if (!ok(out.status)) return true;
-  return which == TargetsToReconstruct::Every && out.reached == ApplicationLevel::Reconstruction && !out.pose;
-}
-
 // What one pass reports beyond the chain's buffers.
 struct PassOutcome {
   Status status = Status::Ok;
@@ -232,6 +222,12 @@ bool saysMore(ApplicationLevel reached, int factor, ApplicationLevel other, int 
 
 }  // namespace
 
+bool missedTarget(const FrameResult& out, TargetsToReconstruct which) {
+  if (out.status == Status::AmbiguousTarget || out.status == Status::AmbiguousPose) return false;
+  if (!ok(out.status)) return true;
+  return which == TargetsToReconstruct::Every && out.reached == ApplicationLevel::Reconstruction && !out.pose;
+}
+
 void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect region, TargetsToReconstruct which,
                    StageChain& chain, FrameResult& out, const Pose* expected) {
   const PipelineOptions& o = settings.pipeline;
@@ -342,7 +338,7 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
       findTargets(settings, grey, passRegion, which, chain.connectivity_ws, chain, out);
     if (pass.factor > 1) enlargeDetections(pass.factor, inside.tl(), chain, out);
     if (ok(out.status)) reconstructTargets(settings, grey, which, chain, out, expected);
-    if (!missed(out, which)) break;
+    if (!missedTarget(out, which)) break;
     if (i + 1 == count && haveMiss &&
         !saysMore(out.reached, chain.reported_factor, bestMiss.reached, chain.spare.factor)) {
       // Every pass missed: the report of the one that said most.

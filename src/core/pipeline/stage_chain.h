@@ -99,6 +99,11 @@ inline bool stageRan(const FrameResult& result, ApplicationLevel stage) {
 void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect region, TargetsToReconstruct which,
                    StageChain& chain, FrameResult& out, const Pose* expected = nullptr);
 
+// Whether a run (or one pass of it) missed the target: a failure after the threshold was
+// found, or, with every target reconstructed, none that reconstructed. Two targets
+// (AmbiguousTarget) or two poses (AmbiguousPose) are findings of the target, not misses.
+bool missedTarget(const FrameResult& out, TargetsToReconstruct which);
+
 // The last run's binary image at the searched region's size: chain.binary, or, when a
 // reduced pass was reported, that image enlarged block by block into
 // chain.enlarged_binary (white where the region's last rows and columns made no whole
