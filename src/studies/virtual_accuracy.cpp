@@ -334,11 +334,12 @@ std::string virtualAccuracyReport(const Settings& settings, int frames, std::uin
       "centre %.0f-%.0f mm, tilt (angle between its normal and the line of sight) 0-%.0f deg in any direction, "
       "in-plane rotation any, position anywhere with the whole card in the image; noise sigma 0-%.0f grey levels, "
       "blur sigma 0-%.1f px, illumination gradient up to +-%.0f %% across the image, %d clutter bars and "
-      "rectangles. %d frames with and %d without lens distortion.\n\n",
+      "rectangles; every pixel an edge crosses averaged over %d x %d samples (its coverage). %d frames with and "
+      "%d without lens distortion.\n\n",
       settings.target.radius_mm, settings.target.spot_radius_mm, settings.target.spot_offset_mm,
       settings.virtual_scene.card_size_mm, settings.camera().image_plane_distance_mm, settings.camera().pixel_size_mm[0],
       kMinDistanceMm, kMaxDistanceMm, kMaxTiltDeg, kMaxNoiseSigma, kMaxBlurSigmaPx, 100 * kMaxGradient, kClutter,
-      frames, frames);
+      settings.virtual_scene.supersampling, settings.virtual_scene.supersampling, frames, frames);
   md += "Each frame goes through the pipeline's detection (whole frame, no tracking, the default settings), then "
         "through the reconstruction once per contour mode. Rotation error: the angle of R_true^-1 R_est; "
         "position error: |T_est - T_true| in % of the distance. Medians and 95th percentiles are over the frames "

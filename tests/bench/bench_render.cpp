@@ -59,6 +59,12 @@ void BM_RenderGreyAllEffects(benchmark::State& state) {
   s.illumination_gradient = 0.3;
   run(state, s, kFar);
 }
+// The anti-aliasing's cost: samples per edge pixel, supersampling^2 (the near pose, distorted).
+void BM_RenderGreySupersampling(benchmark::State& state) {
+  VirtualSceneOptions s;
+  s.supersampling = static_cast<int>(state.range(1));
+  run(state, s, kNear);
+}
 void BM_RenderPatternGrey(benchmark::State& state) { run(state, VirtualSceneOptions{}, Pose{30, 20, 5, 0, 0, 900}, true); }
 
 BENCHMARK(BM_RenderBinaryFar)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
@@ -67,6 +73,11 @@ BENCHMARK(BM_RenderBinaryClutter)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)
 BENCHMARK(BM_RenderGreyFar)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RenderGreyNear)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RenderGreyAllEffects)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RenderGreySupersampling)
+    ->Args({1, 4})
+    ->Args({1, 8})
+    ->Args({1, 16})
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RenderPatternGrey)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

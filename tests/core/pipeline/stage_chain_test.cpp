@@ -254,7 +254,7 @@ TEST(StageChainCoarse, AChainStoppingBeforeThePoseSearchesTheFullSize) {
 TEST(StageChainCoarse, AMissAtTheReducedSizeFallsThroughToTheFullSize) {
   Settings s;
   s.virtual_scene.card_size_mm = 102.0;
-  s.virtual_scene.background_level = 230;
+  s.virtual_scene.background_level = 245;
   const Pose truth{0, 10, 30, 0, 0, 800};
   const cv::Mat grey = render(s, truth);
   StageChain chain;
