@@ -23,6 +23,11 @@ namespace {
 constexpr double kRaySteps = 16.0;  // 8 points MOD: samples per pixel along a ray
 constexpr double kMinSubPixelContrastFraction = 0.3;
 constexpr double kSubPixelPoints = 160.0;
+// Near head-on the plane's normal hangs on the rim's slight ellipticity (its error grows as
+// the square root of the fitted axes' error), so a rim within about 20 deg of round
+// (b >= 0.94 a) takes up to twice the points: docs/reconstruction.md, Accuracy study.
+constexpr double kHeadOnSubPixelPoints = 320.0;
+constexpr double kHeadOnAxisRatio = 0.94;
 
 // Eq. 2.1 over a crop, as binarize() does it (255 where grey > t), in a plain loop the
 // compiler vectorises: on a crop of a few thousand pixels cv::threshold's set-up costs
@@ -325,10 +330,11 @@ void fullPathMod(const ThresholdLines& lines, const cv::Rect& crop, const cv::Ma
   const cv::Rect& c = crop;
   // SubPixel spaces its rows and columns a fractional step apart on a large rim: about
   // kSubPixelPoints evenly spread points (a rim crosses about 2 sqrt(2) (a + b) rows and
-  // columns) are as good as all of them to a few per cent of the error and cost a fraction
-  // of the time. A whole-pixel step would keep up to 1.4x as many.
-  const double lineStep =
-      subPixel ? std::max(1.0, 2.0 * M_SQRT2 * (detected.a + detected.b) / kSubPixelPoints) : 1.0;
+  // columns) are as good as all of them to a few per cent of the error on a tilted target
+  // and cost a fraction of the time. A whole-pixel step would keep up to 1.4x as many.
+  const double points =
+      detected.b >= kHeadOnAxisRatio * detected.a ? kHeadOnSubPixelPoints : kSubPixelPoints;
+  const double lineStep = subPixel ? std::max(1.0, 2.0 * M_SQRT2 * (detected.a + detected.b) / points) : 1.0;
   // One crossing of a row or column with the rim, expected at `e`, the run inside the rim
   // along that line being `run` long; `in` points towards the inside.
   // The detected rim lies off the grey edge by about the same distance all round (the
