@@ -59,8 +59,11 @@ done
 # The man page holds every command's help; the desktop entry validates and its icon is there.
 man_page="$usr/share/man/man1/imagepro-cli.1.gz"
 [ -f "$man_page" ] || fail "no man page"
+# Unpacked once into a file: piped into grep -q, gzip can be cut off by grep's early exit
+# (SIGPIPE), which pipefail reports as a failure of the whole pipe.
+gzip -dc "$man_page" >"$scratch/imagepro-cli.1" || fail "man page does not decompress"
 for section in '^\.SH SYNOPSIS' '^\.SH COMMANDS' '^\.SS demo' '^\.SS reconstruct'; do
-  gzip -dc "$man_page" | grep -q "$section" || fail "man page lacks $section"
+  grep -q "$section" "$scratch/imagepro-cli.1" || fail "man page lacks $section"
 done
 desktop="$usr/share/applications/imagepro.desktop"
 desktop-file-validate "$desktop" || fail "desktop-file-validate $desktop"
