@@ -252,8 +252,8 @@ struct VirtualSceneOptions {
   RenderMode mode = RenderMode::Grey;
   // Per axis, grey mode edge anti-aliasing: n x n samples per edge pixel. At 4 a pixel's
   // coverage came in steps of 1/16 (1/4 along a row or column), an error in the rim that the
-  // accuracy study measured as the method's own (docs/accuracy.md); 8 is three times the
-  // sampling's cost and leaves the study's figures to the method.
+  // accuracy study measured as the method's own; 8 costs three times the sampling and leaves
+  // the study's figures to the method (docs/reconstruction.md, Accuracy study).
   int supersampling = 8;
   double blur_sigma_px = 0.0;
   double noise_sigma = 0.0;         // grey levels
