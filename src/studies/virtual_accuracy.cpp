@@ -107,6 +107,7 @@ struct Method {
   bool correction = true;
   bool marker = false;
   bool centreSpotNormal = true;  // ReconstructionOptions::centre_spot_normal
+  bool rimEdgeModel = true;      // ReconstructionOptions::rim_edge_model
 };
 
 struct Outcome {
@@ -213,6 +214,7 @@ void runCondition(const Settings& settings, Condition& c, int frames, std::uint6
         config.options.contour_mode = method.mode;
         config.options.distortion_correction = method.correction;
         config.options.centre_spot_normal = method.centreSpotNormal;
+        config.options.rim_edge_model = method.rimEdgeModel;
         o.ok = ok(reconstructTarget(config, frame.image, detected.targets.front().ellipse, detected.threshold, ws,
                                     result));
         est = result.pose;
@@ -313,7 +315,9 @@ std::string virtualAccuracyReport(const Settings& settings, int frames, std::uin
                           {"full path ORG", ContourMode::FullPathOrg},
                           {"full path MOD", ContourMode::FullPathMod},
                           {"sub-pixel", ContourMode::SubPixel},
-                          {"sub-pixel, rim normal only", ContourMode::SubPixel, true, false, false}};
+                          {"sub-pixel, rim normal only", ContourMode::SubPixel, true, false, false},
+                          {"sub-pixel, own plateaus (no rim edge model)", ContourMode::SubPixel, true, false, true,
+                           false}};
     if (withUncorrected) m.push_back({"sub-pixel, distortion not corrected", ContourMode::SubPixel, false});
     m.push_back({"ArUco 4x4 (IPPE)", ContourMode::SubPixel, true, true});
     return m;
@@ -357,7 +361,7 @@ std::string virtualAccuracyReport(const Settings& settings, int frames, std::uin
   const ReconstructionOptions& defaultOptions = defaults.pipeline.reconstruction;
   auto isDefault = [&](const Method& m) {
     return !m.marker && m.correction && m.mode == defaultOptions.contour_mode &&
-           m.centreSpotNormal == defaultOptions.centre_spot_normal;
+           m.centreSpotNormal == defaultOptions.centre_spot_normal && m.rimEdgeModel == defaultOptions.rim_edge_model;
   };
   std::size_t defaultIndex = 0, markerIndex = main.methods.size() - 1;
   for (std::size_t m = 0; m < main.methods.size(); ++m)

@@ -95,6 +95,26 @@ void BM_PoseFromEllipse(benchmark::State& state) {
 BENCHMARK(BM_PoseFromEllipse)->ArgNames({"centre_spot"})->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // The whole reconstruction with refine_pose (refine.h) on, default mode, at the three
+// The rim edge model (rim_edge_model, rim_edge.h) off and on, the default sub-pixel mode at
+// three distances: the difference is the model's cost.
+void BM_CropToPoseRimEdgeModel(benchmark::State& state) {
+  const Scene scene(static_cast<double>(state.range(0)), ContourMode::SubPixel);
+  ReconstructionConfig config = reconstructionConfig(scene.settings);
+  config.options.rim_edge_model = state.range(1) != 0;
+  ReconstructionWorkspace ws;
+  ReconstructionResult result;
+  for (auto _ : state) {
+    const Status s = reconstructTarget(config, scene.image, scene.detected, 128, ws, result);
+    if (!ok(s)) state.SkipWithError("reconstruction failed");
+    benchmark::DoNotOptimize(result.pose);
+  }
+  state.counters["points"] = static_cast<double>(result.contour.size());
+}
+BENCHMARK(BM_CropToPoseRimEdgeModel)
+    ->ArgNames({"mm", "model"})
+    ->ArgsProduct({{400, 800, 1200}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+
 // distances: the difference to BM_CropToPose/mm:D/mode:4/rethreshold:1 is the refinement's cost.
 void BM_CropToPoseRefined(benchmark::State& state) {
   const Scene scene(static_cast<double>(state.range(0)), ContourMode::SubPixel);

@@ -101,11 +101,12 @@ def test_threads_share_the_module():
 
 
 def test_an_ambiguous_pose_gives_both_candidates():
-    # Far and nearly face-on: the rim's two circles fit the spots about equally.
-    r = imagepro.reconstruct(imagepro.render(imagepro.Pose(0, 3, 0, 0, 0, 6000)))
+    # Far and nearly face-on, turned 6 deg about y: the rim's two circles fit the spots about
+    # equally. (At 3 deg the two lie within 5 deg of each other, and either is kept.)
+    r = imagepro.reconstruct(imagepro.render(imagepro.Pose(0, 6, 0, 0, 0, 6000)))
     assert r.status == "AmbiguousPose" and r.pose is None
     first, second = r.candidates
-    assert abs(first.rx_deg + second.rx_deg) < 0.5 and abs(first.rx_deg) > 1  # mirrored about the line of sight
+    assert abs(first.ry_deg + second.ry_deg) < 0.5 and abs(first.ry_deg) > 1  # mirrored about the line of sight
     assert first.tz_mm == pytest.approx(6000, rel=0.05)
     with pytest.raises(imagepro.AmbiguousPose):
         r.raise_for_status()

@@ -9,6 +9,7 @@
 #include "core/common/contract.h"
 #include "core/reconstruction/feature_geometry.h"
 #include "core/reconstruction/features.h"
+#include "core/reconstruction/rim_edge.h"
 #include "core/segmentation/image_buffer.h"
 
 namespace imagepro {
@@ -16,6 +17,8 @@ namespace imagepro {
 using feature_detail::ceilToInt;
 using feature_detail::EllipseForm;
 using feature_detail::floorToInt;
+using feature_detail::levelCrossing;
+using feature_detail::PixelLine;
 using feature_detail::roundToInt;
 
 namespace {
@@ -24,8 +27,10 @@ constexpr double kRaySteps = 16.0;  // 8 points MOD: samples per pixel along a r
 constexpr double kMinSubPixelContrastFraction = 0.3;
 constexpr double kSubPixelPoints = 160.0;
 // Near head-on the plane's normal hangs on the rim's slight ellipticity (its error grows as
-// the square root of the fitted axes' error), so a rim within about 20 deg of round
-// (b >= 0.94 a) takes up to twice the points: docs/reconstruction.md, Accuracy study.
+// the square root of the fitted axes' error), so without the rim edge model a rim within
+// about 20 deg of round (b >= 0.94 a) takes up to twice the points. The model's points are
+// about twice as precise, and 160 of them meet the head-on goals at less cost:
+// docs/reconstruction.md, Accuracy study and Rim edge model.
 constexpr double kHeadOnSubPixelPoints = 320.0;
 constexpr double kHeadOnAxisRatio = 0.94;
 
@@ -55,31 +60,6 @@ void binarizeCrop(const cv::Mat& grey, const cv::Rect& crop, int t, cv::Mat& out
     for (; x < crop.width; ++x) o[x] = in[x] > level ? 255 : 0;
   }
 }
-
-// One image row or column of 8-bit pixels, indexed by its image coordinate k in
-// [first, last]: the grey frame's whole line, or the binary crop's part of it.
-struct PixelLine {
-  const std::uint8_t* data = nullptr;  // the pixel at `first`
-  std::ptrdiff_t stride = 1;
-  int first = 0, last = -1;
-
-  static PixelLine row(const cv::Mat& m, int y, int x0 = 0) {
-    return {m.ptr<std::uint8_t>(y), 1, x0, x0 + m.cols - 1};
-  }
-  static PixelLine column(const cv::Mat& m, int x, int y0 = 0) {
-    return {m.ptr<std::uint8_t>(0) + x, static_cast<std::ptrdiff_t>(m.step[0]), y0, y0 + m.rows - 1};
-  }
-  bool contains(int k) const { return k >= first && k <= last; }
-  double at(int k) const { return data[(k - first) * stride]; }
-  bool above(int k, int level) const { return contains(k) && data[(k - first) * stride] > level; }
-  bool interp(double x, double& value) const {
-    const int k = floorToInt(x);
-    if (k < first || k + 1 > last) return false;
-    const double f = x - k;
-    value = (1.0 - f) * at(k) + f * at(k + 1);
-    return true;
-  }
-};
 
 // The binary crop seen in image coordinates; outside the crop counts as black.
 struct BinaryView {
@@ -175,27 +155,13 @@ bool areaCrossing(const PixelLine& line, int in, const EdgeLevels& levels, doubl
 // The crossing nearest x0 of the grey level with the mean of the two plateaus sampled 2.5
 // and 3.5 px either side of x0, the profile interpolated linearly between pixels.
 bool linearCrossing(const PixelLine& line, int in, const EdgeLevels& levels, double& x0) {
-  constexpr int kSearchPx = 3;
   double o1, o2, i1, i2;
   if (!line.interp(x0 - in * 2.5, o1) || !line.interp(x0 - in * 3.5, o2) ||
       !line.interp(x0 + in * 2.5, i1) || !line.interp(x0 + in * 3.5, i2))
     return false;
   const double outside = 0.5 * (o1 + o2), inside = 0.5 * (i1 + i2);
   if (!(inside - outside >= levels.minContrast())) return false;
-  const double level = 0.5 * (inside + outside);
-  const int k0 = floorToInt(x0);
-  double best = 0.0;
-  bool found = false;
-  for (int k = std::max(k0 - kSearchPx, line.first); k <= std::min(k0 + kSearchPx, line.last - 1); ++k) {
-    const double g0 = line.at(k), g1 = line.at(k + 1);
-    // Only a rise towards white counts.
-    if ((g1 - g0) * in <= 0.0 || (g0 - level) * (g1 - level) > 0.0) continue;
-    const double x = k + (level - g0) / (g1 - g0);
-    if (!found || std::abs(x - x0) < std::abs(best - x0)) best = x;
-    found = true;
-  }
-  if (found) x0 = best;
-  return found;
+  return levelCrossing(line, in, 0.5 * (inside + outside), x0);
 }
 
 // A rim crossing near x0 on a grey line, `in` (+1 or -1) pointing towards white: the area
@@ -216,6 +182,22 @@ bool refineCrossing(const PixelLine& line, int in, const EdgeLevels& levels, dou
   if (!linearCrossing(line, in, levels, x0)) return false;
   if (areaCrossing(line, in, levels, roomPx, x0)) return true;
   for (int pass = 1; pass < kMaxPasses; ++pass) {
+    const double before = x0;
+    if (!linearCrossing(line, in, levels, x0)) return false;
+    if (std::abs(x0 - before) < 0.02) break;
+  }
+  return true;
+}
+
+// A crossing's start for the rim edge model, which places it again: the area estimate
+// once, else the linear crossing until it settles (a far rim's start may lie a pixel off),
+// without refineCrossing's second looks at the area estimate.
+bool startCrossing(const PixelLine& line, int in, const EdgeLevels& levels, double roomPx, double& x0) {
+  constexpr int kMaxPasses = 4;
+  const double start = x0;
+  if (areaCrossing(line, in, levels, roomPx, x0)) return true;
+  x0 = start;
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
     const double before = x0;
     if (!linearCrossing(line, in, levels, x0)) return false;
     if (std::abs(x0 - before) < 0.02) break;
@@ -323,9 +305,12 @@ void eightPointsMod(const BinaryView& view, const Ellipse& detected, double band
   }
 }
 
+// `crossings` (SubPixel) receives each point's line, in the points' order. With
+// `modelFollows` the rim edge model places the points again: each crossing needs only a
+// start (startCrossing), and a near-round rim keeps kSubPixelPoints.
 void fullPathMod(const ThresholdLines& lines, const cv::Rect& crop, const cv::Mat& grey, const Ellipse& detected,
-                 double band, bool subPixel, const EdgeLevels& levels,
-                 std::vector<Eigen::Vector2d>& out) {
+                 double band, bool subPixel, const EdgeLevels& levels, std::vector<Eigen::Vector2d>& out,
+                 std::vector<RimCrossing>* crossings = nullptr, bool modelFollows = false) {
   const EllipseForm form(detected, 1.0);
   const cv::Rect& c = crop;
   // SubPixel spaces its rows and columns a fractional step apart on a large rim: about
@@ -333,7 +318,7 @@ void fullPathMod(const ThresholdLines& lines, const cv::Rect& crop, const cv::Ma
   // columns) are as good as all of them to a few per cent of the error on a tilted target
   // and cost a fraction of the time. A whole-pixel step would keep up to 1.4x as many.
   const double points =
-      detected.b >= kHeadOnAxisRatio * detected.a ? kHeadOnSubPixelPoints : kSubPixelPoints;
+      !modelFollows && detected.b >= kHeadOnAxisRatio * detected.a ? kHeadOnSubPixelPoints : kSubPixelPoints;
   const double lineStep = subPixel ? std::max(1.0, 2.0 * M_SQRT2 * (detected.a + detected.b) / points) : 1.0;
   // One crossing of a row or column with the rim, expected at `e`, the run inside the rim
   // along that line being `run` long; `in` points towards the inside.
@@ -357,7 +342,9 @@ void fullPathMod(const ThresholdLines& lines, const cv::Rect& crop, const cv::Ma
     // SubPixel starts from the detected rim itself; only where the grey levels there show no
     // clean edge does it start again from the binary crossing.
     auto refined = [&] {
-      if (!refineCrossing(greyLine, in, levels, roomPx, at)) return false;
+      if (!(modelFollows ? startCrossing(greyLine, in, levels, roomPx, at)
+                         : refineCrossing(greyLine, in, levels, roomPx, at)))
+        return false;
       offsetSum += (at - e) * in;
       ++offsetCount;
       return true;
@@ -381,8 +368,11 @@ void fullPathMod(const ThresholdLines& lines, const cv::Rect& crop, const cv::Ma
     for (int side = 0; side < 2; ++side) {
       if (!form.normalMostlyHorizontal(xs[side], y)) continue;
       double x;
-      if (crossing(binary, greyLine, xs[side], side == 0 ? 1 : -1, room(xs[1] - xs[0], xs[side], y), x))
+      const int in = side == 0 ? 1 : -1;
+      if (crossing(binary, greyLine, xs[side], in, room(xs[1] - xs[0], xs[side], y), x)) {
         out.emplace_back(x, y);
+        if (crossings) crossings->push_back({y, in, true});
+      }
     }
   }
   // Columns cross the rest.
@@ -394,8 +384,11 @@ void fullPathMod(const ThresholdLines& lines, const cv::Rect& crop, const cv::Ma
     for (int side = 0; side < 2; ++side) {
       if (form.normalMostlyHorizontal(x, ys[side])) continue;
       double y;
-      if (crossing(binary, greyLine, ys[side], side == 0 ? 1 : -1, room(ys[1] - ys[0], x, ys[side]), y))
+      const int in = side == 0 ? 1 : -1;
+      if (crossing(binary, greyLine, ys[side], in, room(ys[1] - ys[0], x, ys[side]), y)) {
         out.emplace_back(x, y);
+        if (crossings) crossings->push_back({x, in, false});
+      }
     }
   }
 }
@@ -406,7 +399,7 @@ double contourBandPx(const Ellipse& detected) { return 2.5 + 0.04 * detected.a; 
 
 Status extractContour(ContourMode mode, const cv::Mat& grey, const cv::Rect& crop,
                       const Ellipse& detected, FeatureWorkspace& ws,
-                      std::vector<Eigen::Vector2d>& points) {
+                      std::vector<Eigen::Vector2d>& points, bool rimEdgeModel) {
   points.clear();
   // The crop was checked against the frame rethresholdCrop saw; reading another, smaller
   // frame through it would run past its rows.
@@ -417,8 +410,10 @@ Status extractContour(ContourMode mode, const cv::Mat& grey, const cv::Rect& cro
   if (mode == ContourMode::SubPixel) {
     // The grey frame itself, its binary crossing taken at the threshold on the fly.
     const EdgeLevels levels{ws.dark_mean, ws.bright_mean};
+    ws.rim_crossings.clear();
     fullPathMod(ThresholdLines{grey, {0, 0, grey.cols, grey.rows}, ws.threshold}, crop, grey, detected, band, true,
-                levels, points);
+                levels, points, &ws.rim_crossings, rimEdgeModel);
+    if (rimEdgeModel) modelRimEdge(grey, detected, ws, points);
     return points.size() >= 6 ? Status::Ok : Status::TooFewPoints;
   }
   binarizeCrop(grey, crop, ws.threshold, ws.binary);

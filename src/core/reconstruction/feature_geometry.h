@@ -1,8 +1,14 @@
 #pragma once
-// Helpers shared by the feature extraction's parts (crop.cpp, contour.cpp, spot_search.cpp):
-// the detected ellipse as a quadratic form and libm-free rounding for their hot loops.
+// Helpers shared by the feature extraction's parts (crop.cpp, contour.cpp, rim_edge.cpp,
+// spot_search.cpp): the detected ellipse as a quadratic form, libm-free rounding for their
+// hot loops, and a grey row or column read along its length.
 // Private to core/reconstruction.
+#include <opencv2/core.hpp>
+
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 
 #include "core/ellipse/ellipse.h"
 
@@ -70,5 +76,49 @@ inline int floorToInt(double v) {
 }
 inline int ceilToInt(double v) { return -floorToInt(-v); }
 inline int roundToInt(double v) { return floorToInt(v + 0.5); }
+
+// One image row or column of 8-bit pixels, indexed by its image coordinate k in
+// [first, last]: the grey frame's whole line, or the binary crop's part of it.
+struct PixelLine {
+  const std::uint8_t* data = nullptr;  // the pixel at `first`
+  std::ptrdiff_t stride = 1;
+  int first = 0, last = -1;
+
+  static PixelLine row(const cv::Mat& m, int y, int x0 = 0) {
+    return {m.ptr<std::uint8_t>(y), 1, x0, x0 + m.cols - 1};
+  }
+  static PixelLine column(const cv::Mat& m, int x, int y0 = 0) {
+    return {m.ptr<std::uint8_t>(0) + x, static_cast<std::ptrdiff_t>(m.step[0]), y0, y0 + m.rows - 1};
+  }
+  bool contains(int k) const { return k >= first && k <= last; }
+  double at(int k) const { return data[(k - first) * stride]; }
+  bool above(int k, int level) const { return contains(k) && data[(k - first) * stride] > level; }
+  bool interp(double x, double& value) const {
+    const int k = floorToInt(x);
+    if (k < first || k + 1 > last) return false;
+    const double f = x - k;
+    value = (1.0 - f) * at(k) + f * at(k + 1);
+    return true;
+  }
+};
+
+// The crossing nearest x0 (within 3 px) of a grey line with `level`, the profile
+// interpolated linearly between pixels; only a rise towards the inside (`in`, +1 or -1)
+// counts.
+inline bool levelCrossing(const PixelLine& line, int in, double level, double& x0) {
+  constexpr int kSearchPx = 3;
+  const int k0 = floorToInt(x0);
+  double best = 0.0;
+  bool found = false;
+  for (int k = std::max(k0 - kSearchPx, line.first); k <= std::min(k0 + kSearchPx, line.last - 1); ++k) {
+    const double g0 = line.at(k), g1 = line.at(k + 1);
+    if ((g1 - g0) * in <= 0.0 || (g0 - level) * (g1 - level) > 0.0) continue;
+    const double x = k + (level - g0) / (g1 - g0);
+    if (!found || std::abs(x - x0) < std::abs(best - x0)) best = x;
+    found = true;
+  }
+  if (found) x0 = best;
+  return found;
+}
 
 }  // namespace imagepro::feature_detail

@@ -35,6 +35,8 @@
 //    mean of its two plateaus. Independent of the threshold, of blur and of illumination.
 //    On a large rim only every n-th row and column is taken, for about 160 points (320 on a
 //    rim within about 20 deg of round, where the normal needs them): more add little accuracy.
+//    By default the rim edge model then re-places every point with levels and blur fitted
+//    over the whole rim (rim_edge.h).
 // Spots: the dark 8-connected components (grey at most the middle of the crop's two class
 // means, so that a threshold close to one class cannot swell, shrink or merge them) inside
 // 0.85 of the detected ellipse with an area
@@ -45,6 +47,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include <cstdint>
 #include <vector>
 
 #include "core/common/geometry.h"
@@ -64,6 +67,15 @@ struct SpotComponent {
   int area = 0, x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // crop coordinates, inclusive box
 };
 
+// Where one sub-pixel rim point was found: on image row (or column) `line`, the inside of
+// the rim towards `inwards` (+1 or -1) along it. The rim edge model re-places the point
+// along that line.
+struct RimCrossing {
+  int line = 0;
+  int inwards = 1;
+  bool row = true;
+};
+
 struct FeatureWorkspace {
   Histogram histogram{};  // of the crop
   cv::Rect crop;          // the crop the threshold belongs to
@@ -75,6 +87,11 @@ struct FeatureWorkspace {
   std::vector<int> runBounds;    // one row's dark runs, start and end in turn
   std::vector<int> componentOf;  // per root run: its component's index
   std::vector<SpotComponent> components;
+  // The sub-pixel rim: each point's line, and the rim edge model's scratch (rim_edge.h).
+  std::vector<RimCrossing> rim_crossings;
+  std::vector<Eigen::Vector4d> rim_probes;  // x, y from the rim's centre; dark and bright level
+  std::vector<double> rim_scratch, rim_residuals;
+  std::vector<std::uint8_t> rim_keep;
 };
 
 struct SpotFeatures {
@@ -104,10 +121,12 @@ Status rethresholdCrop(const cv::Mat& grey, const cv::Rect& crop, const Threshol
                        int frameThreshold, FeatureWorkspace& ws, int& threshold, bool sampleRows = false);
 
 // Contour points of the rim (image px) by `mode` after rethresholdCrop: from the binary crop,
-// or for SubPixel from the grey levels. TooFewPoints when fewer than 6 are found.
+// or for SubPixel from the grey levels, then with `rimEdgeModel` re-placed by the rim edge
+// model (ReconstructionOptions::rim_edge_model, rim_edge.h). TooFewPoints when fewer than 6
+// are found.
 Status extractContour(ContourMode mode, const cv::Mat& grey, const cv::Rect& crop,
                       const Ellipse& detected, FeatureWorkspace& ws,
-                      std::vector<Eigen::Vector2d>& points);
+                      std::vector<Eigen::Vector2d>& points, bool rimEdgeModel = true);
 
 // The two spots (image px): SpotsNotFound with fewer than two, AmbiguousSpots with more.
 // Their centres are darkness-weighted centroids, then with `weightedCentres` refined under

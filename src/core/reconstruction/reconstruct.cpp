@@ -126,7 +126,7 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
   out.steps.threshold = Status::Ok;
 
   const Status contourStatus =
-      extractContour(config.options.contour_mode, grey, out.crop, detected, fw, out.contour);
+      extractContour(config.options.contour_mode, grey, out.crop, detected, fw, out.contour, config.options.rim_edge_model);
   if (!ok(contourStatus)) return fail(out.steps.contour, contourStatus);
   out.steps.contour = Status::Ok;
 

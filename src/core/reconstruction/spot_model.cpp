@@ -34,6 +34,21 @@ struct Darkest {
 
 cv::Rect boxAbout(int x, int y, int half) { return {x - half, y - half, 2 * half + 1, 2 * half + 1}; }
 
+// A spot is a dark blob on the white disk: at least 12 of 16 points on a circle of
+// `radius` about (x, y) must be brighter than `mid`. The darkest point of a dark region
+// that only lies where a spot should (a hole in a ring, a dark patch) is no spot.
+bool ringedByPaper(const cv::Mat& grey, int x, int y, double radius, double mid) {
+  constexpr int kSamples = 16, kNeeded = 12;
+  int bright = 0;
+  for (int i = 0; i < kSamples; ++i) {
+    const double a = 2.0 * M_PI * i / kSamples;
+    const int px = static_cast<int>(std::lround(x + radius * std::cos(a)));
+    const int py = static_cast<int>(std::lround(y + radius * std::sin(a)));
+    if (px >= 0 && py >= 0 && px < grey.cols && py < grey.rows && grey.ptr<std::uint8_t>(py)[px] > mid) ++bright;
+  }
+  return bright >= kNeeded;
+}
+
 }  // namespace
 
 bool spotBoxesByModel(const cv::Mat& grey, const Ellipse& detected, const TargetGeometry& target, double bright,
@@ -73,6 +88,11 @@ bool spotBoxesByModel(const cv::Mat& grey, const Ellipse& detected, const Target
   const int ox = offset.x, oy = offset.y;
   for (int y = oy - 1; y <= oy + 1; ++y)
     for (int x = ox - 1; x <= ox + 1; ++x) offset.consider(grey, x, y);
+
+  // Paper round both: two spot radii and a pixel of blur out, short of the other spot.
+  const double ring = 2.0 * spotPx + 1.0, mid = dark + 0.5 * contrast;
+  if (!ringedByPaper(grey, centre.x, centre.y, ring, mid) || !ringedByPaper(grey, offset.x, offset.y, ring, mid))
+    return false;
 
   boxes = {boxAbout(centre.x, centre.y, half), boxAbout(offset.x, offset.y, half)};
   return true;

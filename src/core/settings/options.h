@@ -145,6 +145,10 @@ struct ReconstructionOptions {
   // Spot centres under a Gaussian window that follows the spot, instead of the plain
   // darkness-weighted centroid of the spot's box (features.h; docs/reconstruction.md).
   bool weighted_spot_centres = true;
+  // Sub-pixel mode: re-place the rim's points with its dark and bright levels fitted over
+  // the whole rim and the blur's shrink of a curved edge undone (rim_edge.h); off, each
+  // point keeps the level between its own plateaus (docs/reconstruction.md, Rim edge model).
+  bool rim_edge_model = true;
   int crop_margin_px = 4;
   // Sub-pixel contour mode only (the pixel modes keep the thesis's rule, unchecked).
   // Self-check (docs/reconstruction.md): a pose that puts a spot's image further than this

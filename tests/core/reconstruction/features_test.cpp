@@ -163,24 +163,36 @@ TEST_F(FeatureTest, ContourModesAgainstTheTrueRim) {
 
   scene.mode = RenderMode::Grey;
   ASSERT_EQ(prepare(pose, e), Status::Ok);
-  ASSERT_EQ(extractContour(ContourMode::SubPixel, image, crop, e, ws, points), Status::Ok);
+  // Without the rim edge model a round rim takes up to 320 points: this 50 px one crosses
+  // about 2 sqrt(2) (a + b) = 283 rows and columns, and keeps them all.
+  ASSERT_EQ(extractContour(ContourMode::SubPixel, image, crop, e, ws, points, false), Status::Ok);
   d = deviations(pose);
-  // A round rim takes up to 320 points: this 50 px one crosses about 2 sqrt(2) (a + b) = 283
-  // rows and columns, and keeps them all.
   EXPECT_GT(points.size(), 270u);
   EXPECT_LT(points.size(), 300u);
   EXPECT_LT(std::abs(mean(d)), 0.03);
   EXPECT_LT(maxAbs(d), 0.25);  // linear interpolation across a sharp anti-aliased edge
+  // With it (the default), about 160, placed by the area under the sharp edge.
+  ASSERT_EQ(extractContour(ContourMode::SubPixel, image, crop, e, ws, points), Status::Ok);
+  d = deviations(pose);
+  EXPECT_GT(points.size(), 150u);
+  EXPECT_LT(points.size(), 170u);
+  EXPECT_LT(std::abs(mean(d)), 0.01);
+  EXPECT_LT(maxAbs(d), 0.08);
 
-  // A 40 px rim: all its 226 crossings.
+  // A 40 px rim: without the model all its 226 crossings, with it about 160.
   const Pose farther = makePose(cam, 1000, 0, 0, 10, 300.3, 250.7);
   const Ellipse eFar = seenRimEllipse(cam, target, farther);
   ASSERT_EQ(prepare(farther, eFar), Status::Ok);
-  ASSERT_EQ(extractContour(ContourMode::SubPixel, image, crop, eFar, ws, points), Status::Ok);
+  ASSERT_EQ(extractContour(ContourMode::SubPixel, image, crop, eFar, ws, points, false), Status::Ok);
   EXPECT_GT(points.size(), 215u);
   EXPECT_LT(points.size(), 235u);
   d = deviations(farther);
   EXPECT_LT(std::abs(mean(d)), 0.03);
+  ASSERT_EQ(extractContour(ContourMode::SubPixel, image, crop, eFar, ws, points), Status::Ok);
+  EXPECT_GT(points.size(), 145u);
+  EXPECT_LT(points.size(), 170u);
+  d = deviations(farther);
+  EXPECT_LT(std::abs(mean(d)), 0.01);
 
   // Tilted 40 deg the rim is no longer near round (b = 0.77 a): of its about 249 crossings
   // a fractional line step keeps about 160 (a whole-pixel step of 1 would keep all).

@@ -40,6 +40,22 @@ TEST(SpotModel, ADiskWithoutSpotsHasNone) {
   EXPECT_FALSE(spotBoxesByModel(plain, t.rim, t.target, 200, 20, boxes));
 }
 
+// A white ring round a dark hole (a photograph's ring or washer) has dark where both spots
+// should be, but no paper round them: no spots, where the darkest points alone would pass.
+TEST(SpotModel, TheHoleOfARingIsNoSpot) {
+  SmallTarget t;
+  cv::Mat ring(100, 120, CV_8UC1, cv::Scalar(20));
+  cv::circle(ring, {60, 50}, 20, cv::Scalar(200), cv::FILLED);
+  cv::ellipse(ring, {60, 50}, {13, 11}, 0.0, 0.0, 360.0, cv::Scalar(20), cv::FILLED);
+  cv::GaussianBlur(ring, ring, cv::Size(5, 5), 0.8);
+  ASSERT_LT(ring.at<std::uint8_t>(50, 60), 40);  // dark at the centre spot's place
+  ASSERT_LT(ring.at<std::uint8_t>(50, 70), 40);  // and on the offset spot's circle
+  std::array<cv::Rect, 2> boxes;
+  EXPECT_FALSE(spotBoxesByModel(ring, t.rim, t.target, 200, 20, boxes));
+  // Spots on the disk itself still pass.
+  EXPECT_TRUE(spotBoxesByModel(t.grey, t.rim, t.target, 200, 20, boxes));
+}
+
 TEST(SpotModel, BadInputIsNoSpots) {
   SmallTarget t;
   std::array<cv::Rect, 2> boxes;
