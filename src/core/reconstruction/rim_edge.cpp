@@ -51,7 +51,8 @@ Eigen::Vector3d robustFit(FeatureWorkspace& ws, const std::vector<Eigen::Vector4
   std::vector<double>& residuals = ws.rim_residuals;
   std::vector<double>& scratch = ws.rim_scratch;
   residuals.resize(rows.size());
-  for (std::size_t i = 0; i < rows.size(); ++i) residuals[i] = std::abs(value(rows[i]) - start.dot(features(rows[i])));
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    residuals[i] = std::abs(value(rows[i]) - start.dot(features(rows[i])));
   scratch.assign(residuals.begin(), residuals.end());
   const double limit = kOutlierSigmas * 1.4826 * std::max(floor, medianOf(scratch));
   // The normal equations' upper triangle and right-hand side, summed by hand: three
@@ -131,14 +132,15 @@ RimEdgeFit modelRimEdge(const cv::Mat& grey, const Ellipse& detected, FeatureWor
     return contrast > 0.0;
   };
 
-  // 2. The blur, as a covariance (motion blur is one-sided): across a Gaussian-blurred step
-  // of contrast C the profile rises at most C / (s sqrt(2 pi)) per pixel, s the blur's
-  // spread along the edge's normal n, s^2 = n' S n; read along a row or column at cosine c
-  // to n the rise is c times that. Each sampled crossing gives s^2 from the rise between
+  // 2. The blur, as a covariance (motion blur spreads along one direction): across a
+  // Gaussian-blurred step of contrast C the profile rises at most C / (s sqrt(2 pi)) per
+  // pixel, s the blur's spread along the edge's normal n, s^2 = n' S n; read along a row or
+  // column at cosine c to n the rise is c times that. Each sampled crossing gives s^2 from the rise between
   // the two pixels that straddle it; S is fitted to them.
   std::vector<Eigen::Vector4d>& spreads = ws.rim_probes;  // n_x^2, 2 n_x n_y, n_y^2, s^2
   spreads.clear();
-  for (std::size_t i = 0; i < points.size(); i += 2 * stride + 1) {  // about half the probes' crossings: S has three
+  // About half as many crossings as the levels took: S has three parameters and no sides.
+  for (std::size_t i = 0; i < points.size(); i += 2 * stride + 1) {
     const RimCrossing& c = crossings[i];
     const PixelLine line = lineOf(grey, c);
     const int k = floorToInt(c.row ? points[i].x() : points[i].y());

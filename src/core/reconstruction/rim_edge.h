@@ -10,8 +10,9 @@
 //     (light falling off across the target), from probes 2-3 px either side of every
 //     crossing, leaving out probes that stray from the plane (a spot, the scene beyond the
 //     card);
-//  2. estimates the blur as a covariance S (motion blur spreads one way) from the profile's
-//     steepest rise at the crossings, each giving the spread across the edge, n' S n;
+//  2. estimates the blur as a covariance S (motion blur spreads along one direction) from
+//     the profile's steepest rise at the crossings, each giving the spread across the edge,
+//     n' S n;
 //  3. places every point again on its own row or column: where the profile crosses the
 //     planes' mid-level, or where the edge is sharp across (below 0.8 px, where linear
 //     interpolation between two pixels errs) by the area under the profile over a window
