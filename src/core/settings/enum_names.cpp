@@ -66,9 +66,10 @@ constexpr EnumEntry<ContourMode> kContour[] = {
      "searched from outside inwards within +-w px of the detected rim: the first white pixel after black and before a "
      "second white one, the point on the pixel boundary. The improved version (thesis A.1.1, Reconstruction panel)"},
     {ContourMode::SubPixel, "subpixel", "Sub-pixel",
-     "full path MOD's crossings (about 160 on a large rim, up to 320 on a near-round one) placed in the grey levels, by the area under the grey "
+     "full path MOD's crossings (about 160 on a large rim) placed in the grey levels, by the area under the grey "
      "profile across the edge, or where the profile crosses the mean of its two plateaus; independent of the "
-     "threshold (beyond the thesis: its recommendation 6.3)"}};
+     "threshold (beyond the thesis: its recommendation 6.3). By default the rim edge model then places them "
+     "again with levels and blur fitted over the whole rim; without it a near-round rim takes up to 320"}};
 constexpr EnumEntry<TrackingMode> kTracking[] = {
     {TrackingMode::Off, "off", "Off", "no tracking: every frame is searched whole"},
     {TrackingMode::Corners2D, "2d-corners", "2D Corners",
