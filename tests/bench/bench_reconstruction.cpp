@@ -50,10 +50,9 @@ struct Scene {
   }
 };
 
-void BM_CropToPose(benchmark::State& state) {
-  const Scene scene(static_cast<double>(state.range(0)), static_cast<ContourMode>(state.range(1)));
-  ReconstructionConfig config = reconstructionConfig(scene.settings);
-  if (state.range(2) == 0) config.rethreshold.method = ThresholdMethod::None;  // the frame's threshold
+// Crop to pose on `scene` with `config`, every iteration; the rim's points and the crop's
+// size as counters.
+void timeCropToPose(benchmark::State& state, const Scene& scene, const ReconstructionConfig& config) {
   ReconstructionWorkspace ws;
   ReconstructionResult result;
   for (auto _ : state) {
@@ -63,6 +62,13 @@ void BM_CropToPose(benchmark::State& state) {
   }
   state.counters["points"] = static_cast<double>(result.contour.size());
   state.counters["crop_px"] = static_cast<double>(result.crop.area());
+}
+
+void BM_CropToPose(benchmark::State& state) {
+  const Scene scene(static_cast<double>(state.range(0)), static_cast<ContourMode>(state.range(1)));
+  ReconstructionConfig config = reconstructionConfig(scene.settings);
+  if (state.range(2) == 0) config.rethreshold.method = ThresholdMethod::None;  // the frame's threshold
+  timeCropToPose(state, scene, config);
 }
 // (distance mm, contour mode, re-threshold AT-Mod 1 / None 0): every mode at 800 mm; the
 // default mode near and far, and without its own re-threshold.
@@ -101,14 +107,7 @@ void BM_CropToPoseRimEdgeModel(benchmark::State& state) {
   const Scene scene(static_cast<double>(state.range(0)), ContourMode::SubPixel);
   ReconstructionConfig config = reconstructionConfig(scene.settings);
   config.options.rim_edge_model = state.range(1) != 0;
-  ReconstructionWorkspace ws;
-  ReconstructionResult result;
-  for (auto _ : state) {
-    const Status s = reconstructTarget(config, scene.image, scene.detected, 128, ws, result);
-    if (!ok(s)) state.SkipWithError("reconstruction failed");
-    benchmark::DoNotOptimize(result.pose);
-  }
-  state.counters["points"] = static_cast<double>(result.contour.size());
+  timeCropToPose(state, scene, config);
 }
 BENCHMARK(BM_CropToPoseRimEdgeModel)
     ->ArgNames({"mm", "model"})
