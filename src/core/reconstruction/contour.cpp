@@ -413,7 +413,16 @@ Status extractContour(ContourMode mode, const cv::Mat& grey, const cv::Rect& cro
     ws.rim_crossings.clear();
     fullPathMod(ThresholdLines{grey, {0, 0, grey.cols, grey.rows}, ws.threshold}, crop, grey, detected, band, true,
                 levels, points, &ws.rim_crossings, rimEdgeModel);
-    if (rimEdgeModel) modelRimEdge(grey, detected, ws, points);
+    ws.rim_blur_spread_px = 0.0;
+    if (rimEdgeModel) {
+      const RimEdgeFit fit = modelRimEdge(grey, detected, ws, points);
+      if (fit.fitted) {
+        const Eigen::Matrix2d& S = fit.blur_covariance;
+        const double half = 0.5 * (S(0, 0) + S(1, 1));
+        const double widest = half + std::hypot(0.5 * (S(0, 0) - S(1, 1)), S(0, 1));
+        ws.rim_blur_spread_px = std::sqrt(std::max(widest, 0.0));
+      }
+    }
     return points.size() >= 6 ? Status::Ok : Status::TooFewPoints;
   }
   binarizeCrop(grey, crop, ws.threshold, ws.binary);

@@ -92,6 +92,9 @@ struct FeatureWorkspace {
   std::vector<Eigen::Vector4d> rim_probes;  // x, y from the rim's centre; dark and bright level
   std::vector<double> rim_scratch, rim_residuals;
   std::vector<std::uint8_t> rim_keep;
+  // The rim edge model's blur along its widest direction (px, the square root of the blur
+  // covariance's larger eigenvalue: motion blur's length shows here); 0 without the model.
+  double rim_blur_spread_px = 0.0;
 };
 
 struct SpotFeatures {

@@ -47,11 +47,18 @@ double rimReprojectionError(const CameraModel& cam, const TargetGeometry& target
 
 double sumOfSquares(const std::array<double, 2>& e) { return e[0] * e[0] + e[1] * e[1]; }
 
+// The blur spread (ReconstructionResult::blur_spread_px) up to which the pose choice's
+// margin is ambiguity_margin_px itself; beyond it the margin grows in proportion. A spot
+// seen a few pixels across scatters about as much as it is blurred, motion blur most: on
+// real-scene stills every pose kept wrong under a fixed margin of 0.07 px had a spread
+// over 1.1 px (docs/reconstruction.md, The margin follows the blur).
+constexpr double kSharpSpreadPx = 1.0;
+
 // Of the rim's two circles (out.candidates, centre-nearest first), keeps the one that
 // reprojects the spots better when the spots tell them apart, else the one nearer
 // `expected`, else reports AmbiguousPose. The spots are compared by the sum of their
 // squared errors: the offset spot's radial error and the centre spot's both tell the
-// circles apart. A kept pose (or the better of two ambiguous ones) that does not fit the
+// circles apart. The margin the better one must win by grows with the rim's blur. A kept pose (or the better of two ambiguous ones) that does not fit the
 // image is PoseInconsistent: a doubt between two poses of which neither fits is no doubt.
 Status choosePose(const ReconstructionConfig& config, const Pose* expected, ReconstructionResult& out) {
   const ReconstructionOptions& o = config.options;
@@ -74,8 +81,8 @@ Status choosePose(const ReconstructionConfig& config, const Pose* expected, Reco
   bool ambiguous = false;
   if (ok(c.status[1]) && normalsApartDeg(c.pose[0], c.pose[1]) > o.ambiguity_min_deg) {
     const double best = sumOfSquares(c.spot_errors_px[0]), other = sumOfSquares(c.spot_errors_px[1]);
-    const double needed =
-        std::max(o.ambiguity_margin_px * o.ambiguity_margin_px, (o.ambiguity_ratio * o.ambiguity_ratio - 1.0) * best);
+    const double margin = o.ambiguity_margin_px * std::max(1.0, out.blur_spread_px / kSharpSpreadPx);
+    const double needed = std::max(margin * margin, (o.ambiguity_ratio * o.ambiguity_ratio - 1.0) * best);
     if (!(other - best > needed)) {
       ambiguous = expected == nullptr;
       if (expected && rotationBetweenDeg(c.pose[1], *expected) < rotationBetweenDeg(c.pose[0], *expected))
@@ -97,6 +104,7 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
                          ReconstructionWorkspace& ws, ReconstructionResult& out, const Pose* expected) {
   out.steps = ReconstructionSteps{};
   out.contour.clear();
+  out.blur_spread_px = 0.0;
   out.contour_ideal.clear();
   out.spots = SpotFeatures{};
   out.threshold = -1;
@@ -129,6 +137,7 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
       extractContour(config.options.contour_mode, grey, out.crop, detected, fw, out.contour, config.options.rim_edge_model);
   if (!ok(contourStatus)) return fail(out.steps.contour, contourStatus);
   out.steps.contour = Status::Ok;
+  out.blur_spread_px = fw.rim_blur_spread_px;
 
   const Status spotStatus = extractSpots(grey, out.crop, detected, config.target,
                                          config.options.weighted_spot_centres, fw, out.spots);

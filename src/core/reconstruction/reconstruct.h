@@ -49,6 +49,7 @@ struct ReconstructionResult {
   PoseCandidates candidates;
   double spot_error_px = 0.0;  // the larger of spotReprojectionErrors of the pose
   double rim_error_px = 0.0;   // RMS distance of the contour points from the pose's rim
+  double blur_spread_px = 0.0;  // the rim's blur along its widest direction (features.h); 0 unknown
 };
 
 struct ReconstructionWorkspace {

@@ -159,9 +159,10 @@ struct ReconstructionOptions {
   // The rim's two circles: the one reprojecting the spots better is kept when its error is
   // ambiguity_ratio times smaller and sqrt(error^2 + margin^2) below the other's; else, if
   // their normals lie more than ambiguity_min_deg apart, the frame is AmbiguousPose (a
-  // tracked stream takes the one nearer the last pose).
-  double ambiguity_ratio = 1.5;
-  double ambiguity_margin_px = 0.15;
+  // tracked stream takes the one nearer the last pose). The margin is ambiguity_margin_px
+  // on a sharp rim and grows with the rim edge model's blur beyond 1 px of spread.
+  double ambiguity_ratio = 1.3;
+  double ambiguity_margin_px = 0.07;
   double ambiguity_min_deg = 5.0;
 };
 

@@ -186,6 +186,29 @@ TEST_F(RimEdgeTest, MotionBlurKeepsTheRimRound) {
   EXPECT_LT(std::abs(model.axis_ratio - 1.0), std::abs(own.axis_ratio - 1.0) + 0.0005);
 }
 
+// The contour reports the blur along its widest direction, which the pose choice's margin
+// follows (reconstruct.h): a 5 px smear's length shows; a sharp rim's spread is the
+// pixel's own; without the model nothing is measured.
+TEST_F(RimEdgeTest, ReportsTheWidestBlurSpread) {
+  const Pose pose = makePose(cam, 1500, 0, 0, 10, 300.3, 250.7);
+  auto spread = [&](bool model) {
+    rim(pose, model);
+    return ws.rim_blur_spread_px;
+  };
+  scene.blur_sigma_px = 0.3;
+  const double sharp = spread(true);
+  scene.blur_sigma_px = 0.6;
+  smear = cv::Mat::ones(1, 5, CV_32F) / 5.0f;
+  const double smeared = spread(true);
+  std::printf("widest blur spread: sharp %.3f px, 5 px smear %.3f px\n", sharp, smeared);
+  EXPECT_GT(sharp, 0.3);
+  EXPECT_LT(sharp, 0.8);
+  // The smear's own spread, sqrt(0.6^2 + 5^2 / 12) = 1.56 px, with the pixel's (0.45 px).
+  EXPECT_GT(smeared, 1.3);
+  EXPECT_LT(smeared, 1.8);
+  EXPECT_EQ(spread(false), 0.0);
+}
+
 // A sharp edge (below 0.8 px of blur) is placed by the area under its profile, which
 // linear interpolation between two pixels cannot match.
 TEST_F(RimEdgeTest, SharpEdgeByArea) {
