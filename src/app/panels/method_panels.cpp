@@ -216,6 +216,8 @@ QWidget* reconstructionPanel(SettingsBinder& binder) {
                                                    "maxRimError", QObject::tr("PoseInconsistent when the pose's rim lies further (RMS) than this from the contour points")));
   form->addRow(QObject::tr("Ambiguity ratio"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).ambiguity_ratio; }, 2),
                                                      "ambiguityRatio", QObject::tr("AmbiguousPose unless one of the rim's two poses fits the spots this many times better")));
+  form->addRow(QObject::tr("Ambiguity margin"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).ambiguity_margin_px; }, 2, QStringLiteral(" px")),
+                                                      "ambiguityMargin", QObject::tr("... and by at least this much on a sharp image; the margin grows with the rim's measured blur beyond 1 px")));
   binder.onAnyUpdate([&binder, exact] { exact->setEnabled(binder.model().pipeline.reconstruction.distortion_correction); });
   return box;
 }
