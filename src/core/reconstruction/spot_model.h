@@ -6,10 +6,11 @@
 // spot_offset about the centre (the rim's ellipse scaled by spot_offset / radius about
 // its centre: exact for the affine part of the projection, off by far less than a spot
 // on a target small enough to need this). Each is the darkest point there, in 3 x 3 means,
-// and must be darker than the disk by a fifth of the disk-to-card contrast, with paper round
-// it (three quarters of a circle two spot radii out brighter than the mid grey level: the
-// hole of a ring or a dark patch is no spot); the box around it is measured by the spot
-// search's own darkness-weighted centroid.
+// with paper round it (three quarters of the points of two circles 1.5 px beyond one and
+// one and a half spot radii, those on the disk and clear of the other spot, brighter than
+// the mid grey level: the hole of a ring or a dark patch is no spot), and darker than that
+// paper by a fifth of the paper-to-card contrast; the box around it is measured by the
+// spot search's own darkness-weighted centroid.
 #include <opencv2/core.hpp>
 
 #include <array>

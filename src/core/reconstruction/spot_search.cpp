@@ -395,6 +395,24 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
         ++borderCount;
       }
     }
+    if (borderCount < 4) {
+      // The box's border lies beyond the rim's clearance or the other spot's half (a small,
+      // tilted target): the paper is read instead on the box's pixels that count and lie
+      // clear of the spot (the crop's bright class mean takes in the blurred rim and lies
+      // below the paper, which would leave the spot without weight).
+      const Eigen::Vector2d spotCentre = boxCentre(kept[k]);
+      const double clear = target.spot_radius_mm / target.radius_mm * detected.a + 1.5;
+      borderSum = 0.0;
+      borderCount = 0;
+      for (int y = box.y; y < box.y + box.height; ++y) {
+        const std::uint8_t* row = grey.ptr<std::uint8_t>(y);
+        for (int x = box.x; x < box.x + box.width; ++x) {
+          if (!counts(x, y) || (Eigen::Vector2d(x, y) - spotCentre).norm() < clear) continue;
+          borderSum += row[x];
+          ++borderCount;
+        }
+      }
+    }
     const double white = borderCount > 0 ? borderSum / borderCount : bright;
     // Weights white - g: summed as integer moments of g (sum g, sum x g, sum y g over n
     // pixels), combined with the white level at the end.
