@@ -173,6 +173,34 @@ void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsTo
   out.times[Stage::Reconstruction] += microsecondsSince(start);
 }
 
+// Several targets found (AmbiguousTarget) where one is wanted. A photograph's ring, eye or
+// crumpled tissue with two dark marks inside can pass the ellipse stage's test of a target
+// but not the reconstruction's (the spots' own search, the pose and its self-check). When
+// exactly one detection gives a pose that fits the image (Ok, or AmbiguousPose: two poses
+// that both fit), it is the target and goes first, and the frame goes on as found; two
+// that fit are two targets, and the frame stays AmbiguousTarget.
+bool keepTheOneThatReconstructs(const Settings& settings, const cv::Mat& grey, StageChain& chain, FrameResult& out,
+                                const Pose* expected) {
+  const auto start = Clock::now();
+  const ReconstructionConfig config = reconstructionConfig(settings);
+  std::size_t fitting = 0, kept = 0;
+  for (std::size_t i = 0; i < chain.detections.size() && fitting < 2; ++i) {
+    const Status s = reconstructTarget(config, grey, chain.detections[i].ellipse, out.threshold,
+                                       chain.reconstruction_ws, chain.reconstruction, expected);
+    if (s == Status::Ok || s == Status::AmbiguousPose) {
+      ++fitting;
+      kept = i;
+    }
+  }
+  out.times[Stage::Reconstruction] += microsecondsSince(start);
+  if (fitting != 1) return false;
+  std::swap(chain.detections.front(), chain.detections[kept]);
+  std::swap(out.targets.front(), out.targets[kept]);
+  out.status = Status::Ok;
+  out.detected_region = chain.detections.front().bbox;
+  return true;
+}
+
 // The full-size coordinate of the centre of a reduced pixel's block: block x covers
 // [k x, k x + k) of the region starting at `origin`.
 double enlarged(double x, int k, int origin) { return origin + k * x + 0.5 * (k - 1); }
@@ -337,6 +365,9 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
     else
       findTargets(settings, grey, passRegion, which, chain.connectivity_ws, chain, out);
     if (pass.factor > 1) enlargeDetections(pass.factor, inside.tl(), chain, out);
+    if (out.status == Status::AmbiguousTarget && which == TargetsToReconstruct::Best &&
+        reached(o.level, ApplicationLevel::Reconstruction))
+      keepTheOneThatReconstructs(settings, grey, chain, out, expected);
     if (ok(out.status)) reconstructTargets(settings, grey, which, chain, out, expected);
     if (!missedTarget(out, which)) break;
     if (i + 1 == count && haveMiss &&

@@ -130,6 +130,34 @@ TEST(StageChain, EveryTargetGetsItsOwnPose) {
   EXPECT_EQ(r.status, Status::AmbiguousTarget);
 }
 
+// The target beside a look-alike: a white disk on a dark card with two dark marks half its
+// radius apart, like the spots, but 6 px (0.14 R) below its centre, within what the ellipse
+// stage allows. The ellipse stage takes both for targets; no pose of the target puts its
+// spots where the look-alike has them and its rim where the look-alike's is, so the frame
+// is the target's, with its pose. Two targets that both reconstruct stay AmbiguousTarget
+// (EveryTargetGetsItsOwnPose).
+TEST(StageChain, ALookAlikeWithoutAPoseDoesNotMakeTheFrameAmbiguous) {
+  Settings s;
+  const Pose truth{0, 20, 0, -150, 0, 900};
+  cv::Mat grey = render(s, truth);
+  const cv::Point centre(470, 240);
+  const int radius = 44;  // the target's image radius at 900 mm
+  cv::rectangle(grey, cv::Rect(centre.x - 60, centre.y - 60, 120, 120), cv::Scalar(s.virtual_scene.black_level), cv::FILLED);
+  cv::circle(grey, centre, radius, cv::Scalar(s.virtual_scene.white_level), cv::FILLED, cv::LINE_AA);
+  cv::circle(grey, centre + cv::Point(0, 6), 5, cv::Scalar(s.virtual_scene.black_level), cv::FILLED, cv::LINE_AA);
+  cv::circle(grey, centre + cv::Point(22, 6), 5, cv::Scalar(s.virtual_scene.black_level), cv::FILLED, cv::LINE_AA);
+  StageChain chain;
+  FrameResult r;
+  runStageChain(s, grey, {}, TargetsToReconstruct::Every, chain, r);
+  ASSERT_EQ(r.targets.size(), 2u) << "the ellipse stage takes the look-alike for a target";
+  runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, r);
+  ASSERT_EQ(r.status, Status::Ok) << statusName(r.status);
+  ASSERT_TRUE(r.pose.has_value());
+  EXPECT_LT(rotationErrorDeg(truth, *r.pose), 1.0);
+  EXPECT_LT(std::abs(r.pose->tx_mm - truth.tx_mm), 2.0);
+  EXPECT_LT(r.detected_region.x, 320) << "the detected region is the target's";
+}
+
 // Spots 2 px across at 2.5 m (a 3.2 mm spot radius seen by the default camera), blurred,
 // noisy and JPEG-compressed, are found: the frame gets a pose (or, far and tilted, the
 // named doubt between its two poses), never SpotsNotFound.
