@@ -52,7 +52,7 @@ struct FrameResult {
   cv::Rect search_region;           // estimated region (thesis: green), whole frame if untracked
   cv::Rect detected_region;         // smallest box containing the target (thesis: blue)
   int threshold = -1;
-  Histogram histogram{};
+  Histogram histogram{};            // of the searched region (a tracked region's on sampled rows)
   std::size_t edge_pixels = 0;
   std::size_t paths = 0;
   std::vector<TargetSummary> targets;

@@ -201,6 +201,9 @@ bool keepTheOneThatReconstructs(const Settings& settings, const cv::Mat& grey, S
   return true;
 }
 
+// A tracked region's histogram is taken on every k-th row, at least this many pixels.
+constexpr int kRegionHistogramPixels = 8192;
+
 // The full-size coordinate of the centre of a reduced pixel's block: block x covers
 // [k x, k x + k) of the region starting at `origin`.
 double enlarged(double x, int k, int origin) { return origin + k * x + 0.5 * (k - 1); }
@@ -292,7 +295,13 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
   // The searched region is a view into the frame, not a copy: it is counted here and
   // binarized into the chain's own buffer (never the frame's: another view may share it).
   const cv::Mat searched = grey(inside);
-  computeHistogram(searched, out.histogram);
+  if (inside == whole) {
+    computeHistogram(searched, out.histogram);
+  } else {
+    // A tracked region: its grey-level distribution, all its threshold depends on, is the
+    // same on every k-th row, at least kRegionHistogramPixels pixels in all.
+    estimateHistogramFromRows(searched, std::max(1, inside.area() / kRegionHistogramPixels), out.histogram);
+  }
   // Only a search that ends in a pose can tell a reduced pass's miss from the target's
   // absence; the stages' own views (detect, edges) keep the frame's size. A tracked
   // region is small already, and its changing size would change the reduced image's,

@@ -95,7 +95,10 @@ inline bool stageRan(const FrameResult& result, ApplicationLevel stage) {
 // carries its own reconstruction status and pose; out.status is then Ok when at least
 // one target was detected, and out.pose is the first target's that reconstructed.
 // `expected` (a tracked stream's last pose) decides between the rim's two circles where
-// the spots cannot (otherwise AmbiguousPose, both poses in out.ambiguous_poses).
+// the spots cannot (otherwise AmbiguousPose, both poses in out.ambiguous_poses). A region's
+// histogram (not the whole frame's) is taken on every k-th row, at least 8192 pixels, its
+// counts scaled back by k. With TargetsToReconstruct::Best, several targets found are
+// first each reconstructed: exactly one with a pose that fits is the target.
 void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect region, TargetsToReconstruct which,
                    StageChain& chain, FrameResult& out, const Pose* expected = nullptr);
 

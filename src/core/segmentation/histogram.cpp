@@ -98,4 +98,22 @@ void computeHistogram(const cv::Mat& grey, Histogram& hist) {
   partial.sumInto(hist);
 }
 
+void estimateHistogramFromRows(const cv::Mat& grey, int rowStep, Histogram& hist) {
+  hist.fill(0);
+  if (!isGrey(grey)) return;
+  const int k = std::max(rowStep, 1);
+  PartialHistograms partial;
+  // Every row is still requested ahead, the skipped ones too: the binarization that
+  // follows reads them all, and would otherwise wait for each of them itself.
+  const int ahead = std::max(1, (kPrefetchBytes + grey.cols - 1) / grey.cols);
+  for (int r = 0; r < std::min(ahead, grey.rows); ++r) prefetch(grey.ptr<std::uint8_t>(r), grey.cols);
+  for (int r = 0; r < grey.rows; ++r) {
+    if (r + ahead < grey.rows) prefetch(grey.ptr<std::uint8_t>(r + ahead), grey.cols);
+    if (r % k == 0) partial.addRow(grey.ptr<std::uint8_t>(r), grey.cols);
+  }
+  partial.sumInto(hist);
+  if (k > 1)
+    for (std::uint32_t& count : hist) count *= static_cast<std::uint32_t>(k);
+}
+
 }  // namespace imagepro

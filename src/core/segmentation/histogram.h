@@ -15,4 +15,9 @@ using Histogram = std::array<std::uint32_t, 256>;
 // fetched a few rows ahead of the count, as their cache lines are not consecutive.
 void computeHistogram(const cv::Mat& grey, Histogram& hist);
 
+// The histogram of `grey` (as above) estimated from every rowStep-th row, from the first:
+// each of their counts times rowStep (1 or less: every row, the exact histogram). Every row
+// is still fetched ahead into the cache, for what reads the image next.
+void estimateHistogramFromRows(const cv::Mat& grey, int rowStep, Histogram& hist);
+
 }  // namespace imagepro

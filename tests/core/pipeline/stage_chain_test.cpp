@@ -7,6 +7,8 @@
 #include <cmath>
 #include <vector>
 
+#include "core/segmentation/histogram.h"
+#include "core/segmentation/threshold.h"
 #include "core/source/virtual_renderer.h"
 
 namespace imagepro {
@@ -196,6 +198,39 @@ TEST(StageChain, FindsSpotsTwoPixelsAcrossAtTwoAndAHalfMetres) {
 
 namespace imagepro {
 namespace {
+
+// A tracked region's histogram is taken on every k-th row (at least 8192 pixels) and each
+// count scaled back by k: its threshold is the whole region's to a grey level, its total
+// the region's area to a sampled row's width, and the region's pose the same.
+TEST(StageChain, ATrackedRegionsSampledHistogramKeepsItsThreshold) {
+  Settings s;
+  s.virtual_scene.noise_sigma = 3.0;
+  s.virtual_scene.blur_sigma_px = 0.8;
+  for (const Pose& truth : {Pose{10, 25, -60, 40, -30, 500}, Pose{-30, 5, 100, -150, 80, 900}}) {
+    const cv::Mat grey = render(s, truth);
+    StageChain chain;
+    FrameResult whole, tracked;
+    runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, whole);
+    ASSERT_EQ(whole.status, Status::Ok);
+    cv::Rect region = whole.detected_region;
+    region -= cv::Point(40, 40);
+    region += cv::Size(80, 80);
+    region &= cv::Rect(0, 0, grey.cols, grey.rows);
+    ASSERT_GT(region.area(), 2 * 8192) << "sampled";
+    runStageChain(s, grey, region, TargetsToReconstruct::Best, chain, tracked);
+    ASSERT_EQ(tracked.status, Status::Ok) << statusName(tracked.status);
+    Histogram full;
+    computeHistogram(grey(region), full);
+    int fullThreshold = -1;
+    ASSERT_EQ(computeThreshold(s.pipeline.threshold, full, fullThreshold), Status::Ok);
+    EXPECT_NEAR(tracked.threshold, fullThreshold, 1);
+    std::int64_t total = 0;
+    for (const std::uint32_t c : tracked.histogram) total += c;
+    const int rowStep = region.area() / 8192;
+    EXPECT_NEAR(static_cast<double>(total), region.area(), rowStep * region.width);
+    EXPECT_LT(rotationErrorDeg(*whole.pose, *tracked.pose), 0.05);
+  }
+}
 
 // The coarse search (stage_chain.h): a clean frame is found on the reduced image, and the
 // pose, reconstructed from the frame itself, is the full-size search's to within the

@@ -42,6 +42,29 @@ TEST(Histogram, CountsANonContinuousView) {
   EXPECT_EQ(h, bruteForce(view));
 }
 
+// Every k-th row of a view, from the first, each count times k; a step of 1 or less is
+// the exact histogram; bad input all zeros.
+TEST(Histogram, EstimateFromEveryKthRow) {
+  const cv::Mat image = randomImage(120, 97, 11);
+  const cv::Mat view = image(cv::Rect(3, 5, 80, 101));
+  for (const int k : {2, 3, 7}) {
+    Histogram expected{};
+    for (int r = 0; r < view.rows; r += k)
+      for (int c = 0; c < view.cols; ++c) expected[view.at<std::uint8_t>(r, c)] += static_cast<std::uint32_t>(k);
+    Histogram h;
+    estimateHistogramFromRows(view, k, h);
+    EXPECT_EQ(h, expected) << "k " << k;
+  }
+  Histogram h;
+  for (const int k : {1, 0, -2}) {
+    estimateHistogramFromRows(view, k, h);
+    EXPECT_EQ(h, bruteForce(view)) << "k " << k;
+  }
+  h.fill(9);
+  estimateHistogramFromRows(cv::Mat(), 3, h);
+  EXPECT_EQ(h, Histogram{});
+}
+
 TEST(Histogram, EmptyOrWrongTypeGivesZeros) {
   Histogram h;
   h.fill(9);
