@@ -217,7 +217,7 @@ QWidget* reconstructionPanel(SettingsBinder& binder) {
   form->addRow(QObject::tr("Ambiguity ratio"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).ambiguity_ratio; }, 2),
                                                      "ambiguityRatio", QObject::tr("AmbiguousPose unless one of the rim's two poses fits the spots this many times better")));
   form->addRow(QObject::tr("Ambiguity margin"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).ambiguity_margin_px; }, 2, QStringLiteral(" px")),
-                                                      "ambiguityMargin", QObject::tr("... and by at least this much on a sharp image; the margin grows with the rim's measured blur beyond 1 px")));
+                                                      "ambiguityMargin", QObject::tr("AmbiguousPose unless the better of the two poses also fits the spots by this much on a sharp image; the margin grows with the rim's measured blur beyond 1 px")));
   binder.onAnyUpdate([&binder, exact] { exact->setEnabled(binder.model().pipeline.reconstruction.distortion_correction); });
   return box;
 }

@@ -58,8 +58,9 @@ constexpr double kSharpSpreadPx = 1.0;
 // reprojects the spots better when the spots tell them apart, else the one nearer
 // `expected`, else reports AmbiguousPose. The spots are compared by the sum of their
 // squared errors: the offset spot's radial error and the centre spot's both tell the
-// circles apart. The margin the better one must win by grows with the rim's blur. A kept pose (or the better of two ambiguous ones) that does not fit the
-// image is PoseInconsistent: a doubt between two poses of which neither fits is no doubt.
+// circles apart. The margin the better one must win by grows with the rim's blur. A kept
+// pose (or the better of two ambiguous ones) that does not fit the image is
+// PoseInconsistent: a doubt between two poses of which neither fits is no doubt.
 Status choosePose(const ReconstructionConfig& config, const Pose* expected, ReconstructionResult& out) {
   const ReconstructionOptions& o = config.options;
   PoseCandidates& c = out.candidates;

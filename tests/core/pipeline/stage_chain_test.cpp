@@ -144,7 +144,8 @@ TEST(StageChain, ALookAlikeWithoutAPoseDoesNotMakeTheFrameAmbiguous) {
   cv::Mat grey = render(s, truth);
   const cv::Point centre(470, 240);
   const int radius = 44;  // the target's image radius at 900 mm
-  cv::rectangle(grey, cv::Rect(centre.x - 60, centre.y - 60, 120, 120), cv::Scalar(s.virtual_scene.black_level), cv::FILLED);
+  cv::rectangle(grey, cv::Rect(centre.x - 60, centre.y - 60, 120, 120), cv::Scalar(s.virtual_scene.black_level),
+                cv::FILLED);
   cv::circle(grey, centre, radius, cv::Scalar(s.virtual_scene.white_level), cv::FILLED, cv::LINE_AA);
   cv::circle(grey, centre + cv::Point(0, 6), 5, cv::Scalar(s.virtual_scene.black_level), cv::FILLED, cv::LINE_AA);
   cv::circle(grey, centre + cv::Point(22, 6), 5, cv::Scalar(s.virtual_scene.black_level), cv::FILLED, cv::LINE_AA);

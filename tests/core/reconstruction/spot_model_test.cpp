@@ -75,8 +75,8 @@ TEST(SpotModel, FindsTheSpotsOfASmallSteepTarget) {
   renderTarget(cam, settings.target, settings.virtual_scene, pose, image, 5);
   ReconstructionWorkspace ws;
   ReconstructionResult result;
-  const Status s = reconstructTarget(reconstructionConfig(settings), image, testing::seenRimEllipse(cam, settings.target, pose),
-                                     128, ws, result);
+  const Ellipse rim = testing::seenRimEllipse(cam, settings.target, pose);
+  const Status s = reconstructTarget(reconstructionConfig(settings), image, rim, 128, ws, result);
   ASSERT_EQ(result.steps.spots, Status::Ok) << statusName(s);
   EXPECT_EQ(result.spots.candidates, 0) << "too faint for the mid level: found by the model";
   const Eigen::Matrix3d R = rotationMatrix(pose);
