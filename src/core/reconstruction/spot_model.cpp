@@ -102,6 +102,7 @@ bool spotBoxesByModel(const cv::Mat& grey, const Ellipse& detected, const Target
     if (std::hypot(x - centre.x, y - centre.y) < 2.0 * spotPx) continue;
     offset.consider(grey, x, y);
   }
+  if (offset.level > 255.0) return false;  // no point of the scaled ellipse clear of the centre spot
   const int ox = offset.x, oy = offset.y;
   for (int y = oy - 1; y <= oy + 1; ++y)
     for (int x = ox - 1; x <= ox + 1; ++x) offset.consider(grey, x, y);

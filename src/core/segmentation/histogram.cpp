@@ -74,6 +74,19 @@ void prefetch(const std::uint8_t* p, int n) {
 #endif
 }
 
+// Counts every k-th row of a view, from the first, into `partial`. A region's rows are
+// short and a frame's width apart, a pattern the hardware prefetcher does not follow:
+// without help each cache line is a memory round trip. Every row is requested ahead, the
+// skipped ones too: what reads the view next (the binarization) reads them all.
+void countRows(const cv::Mat& grey, int k, PartialHistograms& partial) {
+  const int ahead = std::max(1, (kPrefetchBytes + grey.cols - 1) / grey.cols);
+  for (int r = 0; r < std::min(ahead, grey.rows); ++r) prefetch(grey.ptr<std::uint8_t>(r), grey.cols);
+  for (int r = 0; r < grey.rows; ++r) {
+    if (r + ahead < grey.rows) prefetch(grey.ptr<std::uint8_t>(r + ahead), grey.cols);
+    if (r % k == 0) partial.addRow(grey.ptr<std::uint8_t>(r), grey.cols);
+  }
+}
+
 bool isGrey(const cv::Mat& image) { return !image.empty() && image.dims == 2 && image.type() == CV_8UC1; }
 
 }  // namespace
@@ -86,14 +99,7 @@ void computeHistogram(const cv::Mat& grey, Histogram& hist) {
     // One long row, read in address order: the hardware prefetcher streams it.
     partial.addRow(grey.ptr<std::uint8_t>(0), grey.rows * grey.cols);
   } else {
-    // A region's rows are short and a frame's width apart, a pattern the hardware
-    // prefetcher does not follow: without help each cache line is a memory round trip.
-    const int ahead = std::max(1, (kPrefetchBytes + grey.cols - 1) / grey.cols);
-    for (int r = 0; r < std::min(ahead, grey.rows); ++r) prefetch(grey.ptr<std::uint8_t>(r), grey.cols);
-    for (int r = 0; r < grey.rows; ++r) {
-      if (r + ahead < grey.rows) prefetch(grey.ptr<std::uint8_t>(r + ahead), grey.cols);
-      partial.addRow(grey.ptr<std::uint8_t>(r), grey.cols);
-    }
+    countRows(grey, 1, partial);
   }
   partial.sumInto(hist);
 }
@@ -103,14 +109,7 @@ void estimateHistogramFromRows(const cv::Mat& grey, int rowStep, Histogram& hist
   if (!isGrey(grey)) return;
   const int k = std::max(rowStep, 1);
   PartialHistograms partial;
-  // Every row is still requested ahead, the skipped ones too: the binarization that
-  // follows reads them all, and would otherwise wait for each of them itself.
-  const int ahead = std::max(1, (kPrefetchBytes + grey.cols - 1) / grey.cols);
-  for (int r = 0; r < std::min(ahead, grey.rows); ++r) prefetch(grey.ptr<std::uint8_t>(r), grey.cols);
-  for (int r = 0; r < grey.rows; ++r) {
-    if (r + ahead < grey.rows) prefetch(grey.ptr<std::uint8_t>(r + ahead), grey.cols);
-    if (r % k == 0) partial.addRow(grey.ptr<std::uint8_t>(r), grey.cols);
-  }
+  countRows(grey, k, partial);
   partial.sumInto(hist);
   if (k > 1)
     for (std::uint32_t& count : hist) count *= static_cast<std::uint32_t>(k);
