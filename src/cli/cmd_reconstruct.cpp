@@ -33,8 +33,9 @@ std::string jsonRow(const std::string& frame, const FrameResult& r) {
   row["frame"] = frame;
   row["status"] = std::string(statusName(r.status));
   if (ok(r.status) && r.pose) put(row, *r.pose);
-  if (r.status == Status::AmbiguousPose && r.ambiguous_poses) {
-    // Both of the rim's circles, the one that fits the spots better first.
+  if (r.ambiguous_poses) {
+    // Both of the rim's circles, the one that fits the spots better first: AmbiguousPose,
+    // or ok with the pose halfway between them.
     row["candidates"] = nlohmann::ordered_json::array();
     for (const Pose& p : *r.ambiguous_poses) {
       nlohmann::ordered_json candidate;
@@ -153,7 +154,9 @@ const CommandRegistration kRegistration{{
         "A pose that cannot be trusted is not ok either: AmbiguousPose (the rim's two\n"
         "possible poses fit the spots about equally; with --format json both are given as\n"
         "\"candidates\", the better-fitting first) or PoseInconsistent (the pose puts the\n"
-        "spots or the rim away from where the image has them).\n"
+        "spots or the rim away from where the image has them). When the two lie within\n"
+        "twice ambiguity_min_deg (5 degrees) of each other, the frame is ok with the pose\n"
+        "halfway between them, and the JSON gives both as \"candidates\" too.\n"
         "  --truth          add the ground-truth pose columns (virtual frames)\n"
         "  --no-pace        run a camera or virtual source as fast as possible, not at its frame rate\n"
         "  --data-out FILE  also write the full data-out CSV (regions, stage times) to FILE\n"

@@ -246,7 +246,8 @@ raise_for_status() raises it as its imagepro exception.)")
             if (r.frame.ambiguous_poses) poses.assign(r.frame.ambiguous_poses->begin(), r.frame.ambiguous_poses->end());
             return poses;
           },
-          "AmbiguousPose: the two poses the rim allows, the one fitting the spots better first.")
+          "The two poses the rim allows when the spots could not tell them apart (AmbiguousPose, or ok "
+          "with the pose halfway between them), the one fitting the spots better first.")
       .def_property_readonly("targets", [](const Result& r) { return r.frame.targets; })
       .def_property_readonly("index", [](const Result& r) { return r.frame.index; })
       .def_property_readonly("timestamp_s", [](const Result& r) { return r.frame.timestamp_s; })

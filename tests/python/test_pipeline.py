@@ -102,7 +102,7 @@ def test_threads_share_the_module():
 
 def test_an_ambiguous_pose_gives_both_candidates():
     # Far and nearly face-on, turned 6 deg about y: the rim's two circles fit the spots about
-    # equally. (At 3 deg the two lie within 5 deg of each other, and either is kept.)
+    # equally, and lie more than twice ambiguity_min_deg (5 deg) apart.
     r = imagepro.reconstruct(imagepro.render(imagepro.Pose(0, 6, 0, 0, 0, 6000)))
     assert r.status == "AmbiguousPose" and r.pose is None
     first, second = r.candidates
@@ -110,6 +110,21 @@ def test_an_ambiguous_pose_gives_both_candidates():
     assert first.tz_mm == pytest.approx(6000, rel=0.05)
     with pytest.raises(imagepro.AmbiguousPose):
         r.raise_for_status()
+
+
+def test_close_candidates_give_the_pose_halfway():
+    # Turned 3 deg: the two circles lie within twice ambiguity_min_deg of each other, and the
+    # pose halfway between them is given, with both as candidates.
+    truth = imagepro.Pose(0, 3, 0, 0, 0, 6000)
+    r = imagepro.reconstruct(imagepro.render(truth))
+    assert r.status == "ok"
+    first, second = r.candidates
+    assert r.pose.rotation_error_deg(first) == pytest.approx(r.pose.rotation_error_deg(second), abs=1e-6)
+    assert r.pose.rotation_error_deg(first) > 1
+    assert r.pose.rotation_error_deg(truth) < 5
+    settings = imagepro.Settings()
+    settings["pipeline.reconstruction.ambiguity_min_deg"] = 0.0
+    assert imagepro.reconstruct(imagepro.render(truth), settings).status == "AmbiguousPose"
 
 
 def test_pose_values():

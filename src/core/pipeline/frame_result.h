@@ -57,7 +57,8 @@ struct FrameResult {
   std::size_t paths = 0;
   std::vector<TargetSummary> targets;
   std::optional<Pose> pose;
-  // AmbiguousPose: the rim's two circles as poses, the one fitting the spots better first.
+  // The rim's two circles as poses, the one fitting the spots better first, when the spots
+  // could not tell them apart: AmbiguousPose, or Ok with `pose` halfway between them.
   std::optional<std::array<Pose, 2>> ambiguous_poses;
   std::optional<Pose> truth;        // virtual frames
   // Undistorted features the pose was computed from, for display (full-image pixels).

@@ -156,7 +156,8 @@ void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsTo
                                    chain.reconstruction_ws, chain.reconstruction, expected);
     keepDisplayFeatures(chain.reconstruction, out);
     if (ok(out.status)) out.pose = chain.reconstruction.pose;
-    if (out.status == Status::AmbiguousPose) out.ambiguous_poses = chain.reconstruction.candidates.pose;
+    if (out.status == Status::AmbiguousPose || (ok(out.status) && chain.reconstruction.halfway_pose))
+      out.ambiguous_poses = chain.reconstruction.candidates.pose;
   } else {
     for (std::size_t i = 0; i < chain.detections.size(); ++i) {
       TargetSummary& target = out.targets[i];

@@ -45,6 +45,16 @@ double rimReprojectionError(const CameraModel& cam, const TargetGeometry& target
   return std::sqrt(sum / static_cast<double>(contour.size()));
 }
 
+// The pose halfway between `a` and `b`: the midpoint of the shortest turn between their
+// rotations and of their translations.
+Pose midPose(const Pose& a, const Pose& b) {
+  const Eigen::Quaterniond qa(rotationMatrix(a));
+  Eigen::Quaterniond qb(rotationMatrix(b));
+  if (qa.dot(qb) < 0.0) qb.coeffs() = -qb.coeffs();
+  const Eigen::Quaterniond mid((qa.coeffs() + qb.coeffs()).normalized());
+  return poseFromRt(mid.toRotationMatrix(), 0.5 * (translation(a) + translation(b)));
+}
+
 double sumOfSquares(const std::array<double, 2>& e) { return e[0] * e[0] + e[1] * e[1]; }
 
 // The blur spread (ReconstructionResult::blur_spread_px) up to which the pose choice's
@@ -56,11 +66,13 @@ constexpr double kSharpSpreadPx = 1.0;
 
 // Of the rim's two circles (out.candidates, centre-nearest first), keeps the one that
 // reprojects the spots better when the spots tell them apart, else the one nearer
-// `expected`, else reports AmbiguousPose. The spots are compared by the sum of their
-// squared errors: the offset spot's radial error and the centre spot's both tell the
-// circles apart. The margin the better one must win by grows with the rim's blur. A kept
-// pose (or the better of two ambiguous ones) that does not fit the image is
-// PoseInconsistent: a doubt between two poses of which neither fits is no doubt.
+// `expected`, else, when their normals lie within twice ambiguity_min_deg, the pose halfway
+// between them (within ambiguity_min_deg of either), else reports
+// AmbiguousPose. The spots are compared by the sum of their squared errors: the offset
+// spot's radial error and the centre spot's both tell the circles apart. The margin the
+// better one must win by grows with the rim's blur. A kept pose (or the better of two
+// ambiguous ones) that does not fit the image is PoseInconsistent: a doubt between two
+// poses of which neither fits is no doubt.
 Status choosePose(const ReconstructionConfig& config, const Pose* expected, ReconstructionResult& out) {
   const ReconstructionOptions& o = config.options;
   PoseCandidates& c = out.candidates;
@@ -69,29 +81,41 @@ Status choosePose(const ReconstructionConfig& config, const Pose* expected, Reco
     std::swap(c.status[0], c.status[1]);
     std::swap(c.spot_errors_px[0], c.spot_errors_px[1]);
   };
+  auto keepFirst = [&] {
+    out.pose = c.pose[0];
+    out.spot_error_px = std::max(c.spot_errors_px[0][0], c.spot_errors_px[0][1]);
+  };
   // The thesis's pixel contour modes keep its rule (the circle whose centre projects
   // nearer the centre spot) and no check: their rim, from whole pixels, moves the pose's
   // spots by more than the checks' sub-pixel limits on a good frame (docs/reconstruction.md).
   if (o.contour_mode != ContourMode::SubPixel) {
-    out.pose = c.pose[0];
-    out.spot_error_px = std::max(c.spot_errors_px[0][0], c.spot_errors_px[0][1]);
+    keepFirst();
     out.rim_error_px = rimReprojectionError(config.camera, config.target, out.pose, out.contour_ideal);
     return Status::Ok;
   }
   if (ok(c.status[1]) && sumOfSquares(c.spot_errors_px[1]) < sumOfSquares(c.spot_errors_px[0])) swapCandidates();
+  keepFirst();
   bool ambiguous = false;
-  if (ok(c.status[1]) && normalsApartDeg(c.pose[0], c.pose[1]) > o.ambiguity_min_deg) {
+  if (ok(c.status[1])) {
     const double best = sumOfSquares(c.spot_errors_px[0]), other = sumOfSquares(c.spot_errors_px[1]);
     const double margin = o.ambiguity_margin_px * std::max(1.0, out.blur_spread_px / kSharpSpreadPx);
     const double needed = std::max(margin * margin, (o.ambiguity_ratio * o.ambiguity_ratio - 1.0) * best);
-    if (!(other - best > needed)) {
-      ambiguous = expected == nullptr;
-      if (expected && rotationBetweenDeg(c.pose[1], *expected) < rotationBetweenDeg(c.pose[0], *expected))
-        swapCandidates();
+    const bool spotsDecide = other - best > needed;
+    if (!spotsDecide && expected) {
+      if (rotationBetweenDeg(c.pose[1], *expected) < rotationBetweenDeg(c.pose[0], *expected)) swapCandidates();
+      keepFirst();
+    } else if (!spotsDecide && normalsApartDeg(c.pose[0], c.pose[1]) <= 2.0 * o.ambiguity_min_deg) {
+      // Far and near head-on, the circles lie a few degrees either side of the line of
+      // sight and their spots a tenth of a pixel apart: halfway is the best that is known.
+      out.pose = midPose(c.pose[0], c.pose[1]);
+      out.halfway_pose = true;
+      const std::array<double, 2> e = spotReprojectionErrors(config.camera, config.target, out.pose,
+                                                             out.centre_spot_ideal, out.offset_spot_ideal);
+      out.spot_error_px = std::max(e[0], e[1]);
+    } else {
+      ambiguous = !spotsDecide;
     }
   }
-  out.pose = c.pose[0];
-  out.spot_error_px = std::max(c.spot_errors_px[0][0], c.spot_errors_px[0][1]);
   out.rim_error_px = rimReprojectionError(config.camera, config.target, out.pose, out.contour_ideal);
   if (out.spot_error_px > o.max_spot_error_px || out.rim_error_px > o.max_rim_error_px)
     return Status::PoseInconsistent;
@@ -110,6 +134,7 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
   out.spots = SpotFeatures{};
   out.threshold = -1;
   out.candidates = PoseCandidates{};
+  out.halfway_pose = false;
   out.spot_error_px = out.rim_error_px = 0.0;
   auto fail = [&](Status& step, Status s) {
     step = s;
@@ -170,7 +195,9 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
                                       out.offset_spot_ideal, out.pose, config.options.centre_spot_normal,
                                       &out.candidates);
   if (ok(poseStatus)) poseStatus = choosePose(config, expected, out);
-  if (ok(poseStatus) && config.options.refine_pose) out.steps.refine = refineReconstructedPose(config, out);
+  // A halfway pose is not refined: the refinement would choose between the circles on the
+  // same spots that could not.
+  if (ok(poseStatus) && config.options.refine_pose && !out.halfway_pose) out.steps.refine = refineReconstructedPose(config, out);
   if (!ok(poseStatus)) return fail(out.steps.pose, poseStatus);
   out.steps.pose = Status::Ok;
   out.status = Status::Ok;

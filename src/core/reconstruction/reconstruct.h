@@ -50,6 +50,9 @@ struct ReconstructionResult {
   double spot_error_px = 0.0;  // the larger of spotReprojectionErrors of the pose
   double rim_error_px = 0.0;   // RMS distance of the contour points from the pose's rim
   double blur_spread_px = 0.0;  // the rim's blur along its widest direction (features.h); 0 unknown
+  // The spots could not tell the two circles apart and their normals lie within twice
+  // ambiguity_min_deg: `pose` is the one halfway between the candidates.
+  bool halfway_pose = false;
 };
 
 struct ReconstructionWorkspace {

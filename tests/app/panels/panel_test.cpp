@@ -163,10 +163,11 @@ void PanelTest::reconstructionPanel() {
   QVERIFY(choose(find<QComboBox>(w, "contourMode"), ContourMode::SubPixel));
   find<QSpinBox>(w, "cropMargin")->setValue(9);
   find<QDoubleSpinBox>(w, "ambiguityMargin")->setValue(0.12);
+  find<QDoubleSpinBox>(w, "ambiguityTolerance")->setValue(2.5);
   QVERIFY(waitForApplied(w, [before](const Settings& s) {
     const ReconstructionOptions& r = s.pipeline.reconstruction;
     return r.distortion_correction == !before && r.contour_mode == ContourMode::SubPixel && r.crop_margin_px == 9 &&
-           std::abs(r.ambiguity_margin_px - 0.12) < 1e-9;
+           std::abs(r.ambiguity_margin_px - 0.12) < 1e-9 && std::abs(r.ambiguity_min_deg - 2.5) < 1e-9;
   }));
   for (ContourMode m : {ContourMode::EightPointsOrg, ContourMode::EightPointsMod, ContourMode::FullPathOrg}) {
     QVERIFY(choose(find<QComboBox>(w, "contourMode"), m));

@@ -134,16 +134,17 @@ TEST(RealScenes, DefaultPipelineOnPhotographs) {
               "reappears (-1: never)\n",
               video.hiddenEnd() - video.hiddenBegin(), found_in_hiding, reacquired_after);
 
-  // Measured by this test (accuracy.md gives the larger study): stills 114 of 120 posed, 114 correct,
-  // none off by more than 5 deg, 5 AmbiguousPose (far targets near head-on; 8 with a fixed 0.15 px
-  // margin), rotation median 0.169 deg, p95 0.70 deg, position median 0.039 %; no false detection in
+  // Measured by this test (accuracy.md gives the larger study): stills 117 of 120 posed, 116 correct,
+  // 1 off by more than 5 deg (5.4 deg, a pose halfway between two close circles), 2 AmbiguousPose
+  // (far targets near head-on; 5 before halfway poses, 8 with a fixed 0.15 px margin), rotation
+  // median 0.174 deg, p95 0.78 deg, position median 0.039 %; no false detection in
   // 30 negatives; video 138 of 138 visible frames correct (rotation median 0.055 deg), none in
   // hiding, found again on the frame it reappears. Without
   // the rim edge model the stills' medians were 0.245 deg and 0.11 %, their p95 1.97 deg.
   // (With the thesis's global threshold alone: 44 correct stills, 66 video frames.) The
   // floors leave a few frames for OpenCV's filters rounding differently on other
   // processors (a grey level here and there moves a borderline frame).
-  EXPECT_GE(stills.correct, 110);
+  EXPECT_GE(stills.correct, 112);
   EXPECT_LE(stills.wrong, 3);
   EXPECT_LE(percentile(stills.rotation_deg, 0.5), 0.2);
   EXPECT_LE(percentile(stills.rotation_deg, 0.95), 1.5);

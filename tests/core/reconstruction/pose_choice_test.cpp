@@ -60,12 +60,13 @@ TEST_F(PoseChoiceTest, FarTargetsAreSolvedRightOrCalledAmbiguousNeverFlipped) {
     }
   }
   std::printf("far targets: %d solved, %d ambiguous of 40\n", solved, ambiguous);
-  EXPECT_GE(solved, 36);  // 38 measured, with the weighted spot centres and the plain centroids alike
+  EXPECT_GE(solved, 36);  // 40 measured (38 before halfway poses)
 }
 
 // Under wide blur the spots' centroids scatter more, and the margin the better circle must
 // win by grows with the rim's measured blur spread: a frame whose spots would decide under
-// the sharp image's margin is AmbiguousPose when its rim is blurred. (At 2 px of blur one
+// the sharp image's margin is left undecided when its rim is blurred (AmbiguousPose, or the
+// pose halfway between two close candidates). (At 2 px of blur one
 // of these 60 frames came out flipped: docs/reconstruction.md, The margin follows the blur.)
 TEST_F(PoseChoiceTest, TheMarginGrowsWithTheBlur) {
   settings.virtual_scene.blur_sigma_px = 1.8;  // the real-scene stills reach 1.6
@@ -88,7 +89,7 @@ TEST_F(PoseChoiceTest, TheMarginGrowsWithTheBlur) {
     const double byRatio = (o.ambiguity_ratio * o.ambiguity_ratio - 1.0) * best;
     const double sharpMargin = o.ambiguity_margin_px, blurMargin = o.ambiguity_margin_px * result.blur_spread_px;
     if (gap > std::max(sharpMargin * sharpMargin, byRatio) && gap <= std::max(blurMargin * blurMargin, byRatio)) {
-      EXPECT_EQ(s, Status::AmbiguousPose) << "a gap only the sharp margin would pass";
+      EXPECT_TRUE(s == Status::AmbiguousPose || result.halfway_pose) << "a gap only the sharp margin would pass";
       ++heldBack;
     }
     if (s == Status::Ok) {
@@ -98,7 +99,7 @@ TEST_F(PoseChoiceTest, TheMarginGrowsWithTheBlur) {
   }
   std::printf("blur 1.8 px: %d solved, %d held back by the wider margin\n", solved, heldBack);
   EXPECT_GE(heldBack, 2);  // 4 measured
-  EXPECT_GE(solved, 40);   // 48 measured
+  EXPECT_GE(solved, 40);   // 52 measured
 }
 
 // Nothing in the spots to go by (every pair of distinct circles called ambiguous): the
@@ -119,8 +120,8 @@ TEST_F(PoseChoiceTest, TheLastPoseDecidesWhenTheSpotsCannot) {
   EXPECT_GE(decided, 30);
 }
 
-// The two candidates' normals closer than ambiguity_min_deg: either is as good, no doubt
-// is reported (a target seen head-on is not ambiguous).
+// The two candidates' normals a degree apart: the pose halfway between them is as good as
+// either, no doubt is reported (a target seen head-on is not ambiguous).
 TEST_F(PoseChoiceTest, NearlyEqualCandidatesAreNotAmbiguous) {
   settings.pipeline.reconstruction.ambiguity_ratio = 1e6;
   settings.virtual_scene.blur_sigma_px = 0.0;
@@ -128,6 +129,38 @@ TEST_F(PoseChoiceTest, NearlyEqualCandidatesAreNotAmbiguous) {
   const Pose truth = makePose(settings.camera(), 600, 0.5, 20, 30, 320, 240);
   ASSERT_EQ(run(truth, 1), Status::Ok);
   EXPECT_LT(rotationErrorDeg(truth, result.pose), 1.0);
+}
+
+// Far targets seen 2.5-4.5 deg off their line of sight: the rim's two circles lie 5-9 deg
+// apart, either side of it. When the spots cannot tell them apart (here: never), the pose
+// halfway between them is ok, within ambiguity_min_deg of either, and here of the truth; with
+// ambiguity_min_deg 0 the same frames are AmbiguousPose.
+TEST_F(PoseChoiceTest, CloseCandidatesTheSpotsCannotTellApartGiveThePoseHalfway) {
+  ReconstructionOptions& o = settings.pipeline.reconstruction;
+  o.ambiguity_ratio = 1e6;
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> z(1800, 2400), tilt(2.5, 4.5), rz(-180, 180);
+  int halfway = 0;
+  std::uint64_t seed = 300;
+  for (int i = 0; i < 12; ++i) {
+    const Pose truth = makePose(settings.camera(), z(rng), tilt(rng), rz(rng), rz(rng), 320, 240);
+    o.ambiguity_min_deg = 5.0;
+    ASSERT_EQ(run(truth, ++seed), Status::Ok) << "frame " << i;
+    const PoseCandidates& c = result.candidates;
+    ASSERT_TRUE(ok(c.status[1]));
+    const double apart = rotationErrorDeg(c.pose[0], c.pose[1]);
+    if (apart <= 1.0) continue;  // noise can put the circles nearly together
+    ++halfway;
+    EXPECT_TRUE(result.halfway_pose);
+    EXPECT_NEAR(rotationErrorDeg(result.pose, c.pose[0]), apart / 2, 1e-6);
+    EXPECT_NEAR(rotationErrorDeg(result.pose, c.pose[1]), apart / 2, 1e-6);
+    EXPECT_LT(rotationErrorDeg(truth, result.pose), o.ambiguity_min_deg);
+    EXPECT_LT(result.spot_error_px, o.max_spot_error_px);
+    o.ambiguity_min_deg = 0.0;
+    EXPECT_EQ(run(truth, seed), Status::AmbiguousPose) << "frame " << i;
+    EXPECT_FALSE(result.halfway_pose);
+  }
+  EXPECT_GE(halfway, 10);
 }
 
 // A centre spot moved on the disk by a fifth of its radius: the pose it gives cannot put
