@@ -423,6 +423,7 @@ bool plausibleTargetView(const EllipseOptions& o, const Ellipse& e, cv::Size ima
 Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Paths& paths, cv::Size image,
                     EllipseWorkspace& ws, std::vector<TargetDetection>& out) {
   out.clear();
+  ws.runners_up.clear();
   ws.consensus_fits = 0;
   summariseAll(paths, ws);
   // Only a white path with two dark paths of spot size inside its box can be the target:
@@ -488,10 +489,9 @@ Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Path
   if (o.require_target_spots) return Status::NoTarget;
 
   // The thesis's choice among plain ellipses: lowest error (fit) or highest score (Bennett),
-  // ellipses that hold some dark path first.
-  std::size_t best = kNoPath;
-  bool best_holds = false;
-  double best_key = 0.0;
+  // ellipses that hold some dark path first. The runners-up, in the same order, go to
+  // ws.runners_up.
+  ws.ranked.clear();
   for (std::size_t i = 0; i < ws.paths.size(); ++i) {
     PathSummary& s = ws.paths[i];
     if (!(s.polarity < 0.0)) continue;
@@ -503,14 +503,13 @@ Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Path
     if (o.method == EllipseMethod::Bennett) key = -s.bennett.score;
     else if (o.accept_rule == FitAcceptRule::RelativeError) key = s.fit.relative_error;
     else key = s.trace.mean_sampson_px;
-    if (best == kNoPath || (holds && !best_holds) || (holds == best_holds && key < best_key)) {
-      best = i;
-      best_holds = holds;
-      best_key = key;
-    }
+    ws.ranked.push_back({!holds, key, i});
   }
-  if (best == kNoPath) return Status::NoTarget;
-  out.push_back(toDetection(ws.paths[best], best));
+  if (ws.ranked.empty()) return Status::NoTarget;
+  const std::size_t ranked = std::min(ws.ranked.size(), kRunnersUp + 1);
+  std::partial_sort(ws.ranked.begin(), ws.ranked.begin() + static_cast<std::ptrdiff_t>(ranked), ws.ranked.end());
+  out.push_back(toDetection(ws.paths[ws.ranked[0].path], ws.ranked[0].path));
+  for (std::size_t r = 1; r < ranked; ++r) ws.runners_up.push_back(toDetection(ws.paths[ws.ranked[r].path], ws.ranked[r].path));
   return Status::Ok;
 }
 

@@ -31,10 +31,11 @@
 // (all reported, in path order) unless report_all_targets. Without any target, the
 // thesis's rule picks the best ellipse (lowest error, or highest Bennett score),
 // preferring ellipses that hold any dark path over plain disks, unless
-// require_target_spots.
+// require_target_spots; its runners-up stay in the workspace.
 #include <opencv2/core.hpp>
 
 #include <array>
+#include <compare>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -84,6 +85,18 @@ struct PathSummary {
   bool accepted = false;
 };
 
+// A plain ellipse's place in the thesis's choice: holding a dark path first (lacks_dark
+// false), then by key (E_rel, Sampson distance or minus Bennett's score), then path order.
+struct RankedEllipse {
+  bool lacks_dark = false;
+  double key = 0.0;
+  std::size_t path = kNoPath;
+  auto operator<=>(const RankedEllipse&) const = default;
+};
+
+// How many runners-up of the thesis's choice detectTarget keeps (EllipseWorkspace::runners_up).
+inline constexpr std::size_t kRunnersUp = 8;
+
 // Buffers reused from frame to frame.
 struct EllipseWorkspace {
   std::vector<PathSummary> paths;
@@ -94,6 +107,10 @@ struct EllipseWorkspace {
   std::vector<std::size_t> order;  // paths that may hold spots, smallest box first
   std::mt19937 rng;
   std::size_t consensus_fits = 0;  // consensus fits run by the last detectTarget
+  std::vector<RankedEllipse> ranked;
+  // When detectTarget found no target but chose the best plain ellipse: the next best, in
+  // order (at most kRunnersUp), for a caller that can test them further.
+  std::vector<TargetDetection> runners_up;
 };
 
 // Shape-only classification: every accepted path, in path order, into `out` (cleared

@@ -202,6 +202,31 @@ bool keepTheOneThatReconstructs(const Settings& settings, const cv::Mat& grey, S
   return true;
 }
 
+// No ellipse held the target's spots as the ellipse stage sees them (two dark closed paths),
+// and the best plain ellipse gave no pose. Under motion blur a far target's spots can be too
+// faint for the binary image yet not for the reconstruction's own spot search, while a
+// photograph's ring, holding a dark path, is ranked first. The runners-up go through the
+// reconstruction, best first; the first that gives a pose that fits (Ok or AmbiguousPose)
+// becomes the detection, and the frame goes on as found.
+bool tryRunnersUp(const Settings& settings, const cv::Mat& grey, StageChain& chain, FrameResult& out,
+                  const Pose* expected) {
+  const auto start = Clock::now();
+  const ReconstructionConfig config = reconstructionConfig(settings);
+  for (const TargetDetection& d : chain.ellipse_ws.runners_up) {
+    const Status s = reconstructTarget(config, grey, d.ellipse, out.threshold, chain.reconstruction_ws,
+                                       chain.reconstruction, expected);
+    if (s != Status::Ok && s != Status::AmbiguousPose) continue;
+    chain.detections.front() = d;
+    out.targets.front() = summary(d);
+    out.detected_region = d.bbox;
+    out.status = Status::Ok;
+    out.times[Stage::Reconstruction] += microsecondsSince(start);
+    return true;
+  }
+  out.times[Stage::Reconstruction] += microsecondsSince(start);
+  return false;
+}
+
 // A tracked region's histogram is taken on every k-th row, at least this many pixels.
 constexpr int kRegionHistogramPixels = 8192;
 
@@ -211,18 +236,23 @@ double enlarged(double x, int k, int origin) { return origin + k * x + 0.5 * (k 
 
 // A reduced pass's detections (and the targets reported from them) in full-image
 // coordinates, so the reconstruction crops the frame itself.
+void enlargeDetection(int k, cv::Point origin, TargetDetection& d) {
+  d.ellipse.cx = enlarged(d.ellipse.cx, k, origin.x);
+  d.ellipse.cy = enlarged(d.ellipse.cy, k, origin.y);
+  d.ellipse.a *= k;
+  d.ellipse.b *= k;
+  d.conic = conicFromEllipse(d.ellipse);
+  d.sampson_px *= k;
+  d.bbox = cv::Rect(origin.x + k * d.bbox.x, origin.y + k * d.bbox.y, k * d.bbox.width, k * d.bbox.height);
+}
+
 void enlargeDetections(int k, cv::Point origin, StageChain& chain, FrameResult& out) {
   out.targets.clear();
   for (TargetDetection& d : chain.detections) {
-    d.ellipse.cx = enlarged(d.ellipse.cx, k, origin.x);
-    d.ellipse.cy = enlarged(d.ellipse.cy, k, origin.y);
-    d.ellipse.a *= k;
-    d.ellipse.b *= k;
-    d.conic = conicFromEllipse(d.ellipse);
-    d.sampson_px *= k;
-    d.bbox = cv::Rect(origin.x + k * d.bbox.x, origin.y + k * d.bbox.y, k * d.bbox.width, k * d.bbox.height);
+    enlargeDetection(k, origin, d);
     out.targets.push_back(summary(d));
   }
+  for (TargetDetection& d : chain.ellipse_ws.runners_up) enlargeDetection(k, origin, d);
   if (ok(out.status) && !chain.detections.empty()) out.detected_region = chain.detections.front().bbox;
 }
 
@@ -379,6 +409,10 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
         reached(o.level, ApplicationLevel::Reconstruction))
       keepTheOneThatReconstructs(settings, grey, chain, out, expected);
     if (ok(out.status)) reconstructTargets(settings, grey, which, chain, out, expected);
+    if (which == TargetsToReconstruct::Best && out.reached == ApplicationLevel::Reconstruction &&
+        missedTarget(out, which) && !chain.detections.front().spots_found &&
+        tryRunnersUp(settings, grey, chain, out, expected))
+      reconstructTargets(settings, grey, which, chain, out, expected);
     if (!missedTarget(out, which)) break;
     if (i + 1 == count && haveMiss &&
         !saysMore(out.reached, chain.reported_factor, bestMiss.reached, chain.spare.factor)) {

@@ -161,6 +161,44 @@ TEST(StageChain, ALookAlikeWithoutAPoseDoesNotMakeTheFrameAmbiguous) {
   EXPECT_LT(r.detected_region.x, 320) << "the detected region is the target's";
 }
 
+// A far target blurred until its spots no longer show as dark paths in the binary image,
+// and a sharp white ring with a dark centre beside it: the ellipse stage finds no target
+// and ranks the ring, which holds a dark path, above the target's plain disk. The ring
+// gives no pose (one spot); the runner-up, the target, does, through the reconstruction's
+// own spot search. The ring alone stays without a pose.
+TEST(StageChain, ATargetWhoseSpotsTheBinaryImageLosesIsFoundBehindARing) {
+  Settings s;
+  s.virtual_scene.blur_sigma_px = 2.0;
+  const Pose truth{20, 30, 10, -300, 0, 2200};
+  cv::Mat grey = render(s, truth);
+  auto drawRing = [&s](cv::Mat& image) {
+    const cv::Point centre(470, 330);
+    cv::ellipse(image, centre, cv::Size(30, 22), 20, 0, 360, cv::Scalar(230), cv::FILLED, cv::LINE_AA);
+    cv::circle(image, centre, 6, cv::Scalar(s.virtual_scene.black_level), cv::FILLED, cv::LINE_AA);
+  };
+  drawRing(grey);
+  StageChain chain;
+  FrameResult r;
+  s.pipeline.level = ApplicationLevel::Ellipse;
+  runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, r);
+  ASSERT_EQ(r.status, Status::Ok);
+  ASSERT_FALSE(chain.detections.front().spots_found) << "the spots must be lost to the binary image";
+  EXPECT_GT(chain.detections.front().ellipse.cx, 400) << "the ring is ranked first";
+  s.pipeline.level = ApplicationLevel::Reconstruction;
+  runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, r);
+  ASSERT_EQ(r.status, Status::Ok) << statusName(r.status);
+  ASSERT_TRUE(r.pose.has_value());
+  EXPECT_LT(rotationErrorDeg(truth, *r.pose), 1.0);
+  EXPECT_LT(std::abs(r.pose->tz_mm - truth.tz_mm), 0.02 * truth.tz_mm);  // 1.4 %: 2 px of blur on a small rim
+  EXPECT_LT(r.detected_region.x, 320) << "the detected region is the target's";
+
+  cv::Mat ringOnly(grey.size(), CV_8UC1, cv::Scalar(s.virtual_scene.background_level));
+  drawRing(ringOnly);
+  runStageChain(s, ringOnly, {}, TargetsToReconstruct::Best, chain, r);
+  EXPECT_FALSE(r.pose.has_value());
+  EXPECT_FALSE(ok(r.status)) << statusName(r.status);
+}
+
 // Spots 2 px across at 2.5 m (a 3.2 mm spot radius seen by the default camera), blurred,
 // noisy and JPEG-compressed, are found: the frame gets a pose (or, far and tilted, the
 // named doubt between its two poses), never SpotsNotFound.
