@@ -115,7 +115,7 @@ gen_calibration() {
 
 gen_accuracy() {
   timed "accuracy" run_doc_command \
-    "imagepro-studies accuracy --frames 300 --stills 400 --negatives 100 --videos 4 --video-frames 150 --seed 1" \
+    "imagepro-studies accuracy --frames 300 --stills 2000 --negatives 500 --videos 4 --video-frames 150 --seed 1" \
     >/dev/null
 }
 

@@ -273,7 +273,17 @@ void moveReportedEdges(cv::Rect inside, StageChain& chain) {
 struct Pass {
   bool local = false;
   int factor = 1;
+  int window_px = 0;  // a local pass's window; 0: the settings'
 };
+
+// The window of the last local pass, run on a miss when the settings leave the window to
+// the image's size (window_px 0). Over a dark background a far target's card is brighter
+// than the wide window's mean, and card and disk binarize as one white blob with no
+// ellipse in it; a window about a far disk's size puts the black card below its mean.
+// It is for acquiring a target: a whole frame searched right after a pose (`expected`,
+// a tracked stream's miss) skips it, for its cost (a millisecond or more on a cluttered
+// frame); a tracked region, small, keeps it.
+constexpr int kNarrowWindowPx = 15;
 
 // Whether a missed pass's report says more than another's: it got further through the
 // stages, or as far at full size where the other was reduced.
@@ -370,13 +380,15 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
 
   // The passes in order: reduced before full size, and with global-then-local the
   // global threshold before the local one at each size (threshold cycling on a miss).
-  std::array<Pass, 4> passes{};
+  std::array<Pass, 5> passes{};
   int count = 0;
   for (const int factor : {k, 1}) {
     if (mode != Binarization::Local) passes[count++] = {false, factor};
     if (mode != Binarization::Global) passes[count++] = {true, factor};
     if (k == 1) break;
   }
+  if (mode != Binarization::Global && o.binarization.window_px == 0 && (inside != whole || expected == nullptr))
+    passes[count++] = {true, 1, kNarrowWindowPx};
 
   bool haveMiss = false;  // a missed pass kept in the spare buffers
   PassOutcome bestMiss;
@@ -396,8 +408,13 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
     const cv::Mat& image = pass.factor > 1 ? chain.reduced : searched;
     const cv::Rect passRegion = pass.factor > 1 ? cv::Rect(0, 0, image.cols, image.rows) : inside;
     start = Clock::now();
-    if (pass.local) binarizeLocal(image, o.binarization, chain.local_ws, chain.binary);
-    else binarize(image, out.threshold, chain.binary);
+    if (pass.local) {
+      BinarizationOptions local = o.binarization;
+      if (pass.window_px > 0) local.window_px = pass.window_px;
+      binarizeLocal(image, local, chain.local_ws, chain.binary);
+    } else {
+      binarize(image, out.threshold, chain.binary);
+    }
     out.times[Stage::Threshold] += microsecondsSince(start);
     chain.reported_factor = pass.factor;
     if (pass.factor > 1)

@@ -11,7 +11,10 @@
 // (local_threshold.h), or the first and, when its pass misses the target (no target, or
 // a reconstruction that fails), the second: edges, paths, ellipses and the pose are then
 // found once more on the local binary image, and that pass is kept when it finds the
-// target, or, when both miss, when it got further through the stages.
+// target, or, when both miss, when it got further through the stages. With the local
+// window left to the image's size (window_px 0), a last local pass with a narrow window
+// (15 px, about a far target's disk) follows a miss of every other, except on a whole
+// frame searched right after a pose (a tracked stream's miss).
 //
 // Coarse search (pipeline.binarization.coarse_search): a whole frame at least
 // 2 * kCoarseWidthPx wide (reduce.h), searched for the best target down to its pose, is

@@ -161,6 +161,31 @@ TEST(StageChain, ALookAlikeWithoutAPoseDoesNotMakeTheFrameAmbiguous) {
   EXPECT_LT(r.detected_region.x, 320) << "the detected region is the target's";
 }
 
+// A far, steeply seen target on a black background, its card (black level 40) brighter
+// than the background: in the global and the wide local windows' binary images card and
+// disk are one white blob, and only the last local pass, with a narrow window, separates
+// the disk. With the window set in the settings (no narrow pass) it is not found.
+TEST(StageChain, AFarTargetOnABlackBackgroundIsFoundThroughTheNarrowWindow) {
+  Settings s;
+  s.virtual_scene.background_level = 0;
+  s.virtual_scene.black_level = 40;
+  s.virtual_scene.blur_sigma_px = 1.0;
+  s.virtual_scene.noise_sigma = 2.0;
+  StageChain chain;
+  FrameResult r;
+  for (const Pose& truth : {Pose{55, 0, 30, 100, 50, 2200}, Pose{58, 0, 30, 100, 50, 2400}}) {
+    const cv::Mat grey = render(s, truth);
+    s.pipeline.binarization.window_px = 0;
+    runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, r);
+    ASSERT_EQ(r.status, Status::Ok) << statusName(r.status);
+    ASSERT_TRUE(r.pose.has_value());
+    EXPECT_LT(rotationErrorDeg(truth, *r.pose), 1.0);
+    s.pipeline.binarization.window_px = 41;
+    runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, r);
+    EXPECT_EQ(r.status, Status::NoTarget) << statusName(r.status);
+  }
+}
+
 // A far target blurred until its spots no longer show as dark paths in the binary image,
 // and a sharp white ring with a dark centre beside it: the ellipse stage finds no target
 // and ranks the ring, which holds a dark path, above the target's plain disk. The ring
