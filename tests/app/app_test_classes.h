@@ -68,6 +68,7 @@ class FileTest : public QObject {
   void missingFileShowsAnError();
   void droppedFilesAreOpenedAndRemembered();
   void samplesOpenFromTheMenu();
+  void resultsShowBothPosesOfADoubt();
  private:
   std::unique_ptr<MainWindow> window_;
 };

@@ -58,6 +58,12 @@ QString formatResults(const DisplayPacket& packet) {
   }
   if (r.pose) lines << poseLines("Pose", *r.pose);
   else lines << QStringLiteral("Pose      -");
+  if (r.ambiguous_poses) {
+    // The spots could not tell the rim's two circles apart (AmbiguousPose, or an ok pose
+    // halfway between them): both, the one fitting the spots better first.
+    lines << (r.pose ? QStringLiteral("          halfway between:") : QStringLiteral("          the rim's two poses:"));
+    lines << poseLines("Alt 1", (*r.ambiguous_poses)[0]) << poseLines("Alt 2", (*r.ambiguous_poses)[1]);
+  }
   if (r.truth) lines << poseLines("Truth", *r.truth);
   lines << QStringLiteral("Times [us]");
   for (std::size_t s = 0; s < kStageCount; ++s)

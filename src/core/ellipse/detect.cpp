@@ -509,7 +509,10 @@ Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Path
   const std::size_t ranked = std::min(ws.ranked.size(), kRunnersUp + 1);
   std::partial_sort(ws.ranked.begin(), ws.ranked.begin() + static_cast<std::ptrdiff_t>(ranked), ws.ranked.end());
   out.push_back(toDetection(ws.paths[ws.ranked[0].path], ws.ranked[0].path));
-  for (std::size_t r = 1; r < ranked; ++r) ws.runners_up.push_back(toDetection(ws.paths[ws.ranked[r].path], ws.ranked[r].path));
+  for (std::size_t r = 1; r < ranked; ++r) {
+    const std::size_t path = ws.ranked[r].path;
+    ws.runners_up.push_back(toDetection(ws.paths[path], path));
+  }
   return Status::Ok;
 }
 

@@ -67,12 +67,12 @@ constexpr double kSharpSpreadPx = 1.0;
 // Of the rim's two circles (out.candidates, centre-nearest first), keeps the one that
 // reprojects the spots better when the spots tell them apart, else the one nearer
 // `expected`, else, when their normals lie within twice ambiguity_min_deg, the pose halfway
-// between them (within ambiguity_min_deg of either), else reports
-// AmbiguousPose. The spots are compared by the sum of their squared errors: the offset
-// spot's radial error and the centre spot's both tell the circles apart. The margin the
-// better one must win by grows with the rim's blur. A kept pose (or the better of two
-// ambiguous ones) that does not fit the image is PoseInconsistent: a doubt between two
-// poses of which neither fits is no doubt.
+// between them (within ambiguity_min_deg of either), else reports AmbiguousPose. The spots
+// are compared by the sum of their squared errors: the offset spot's radial error and the
+// centre spot's both tell the circles apart. The margin the better one must win by grows
+// with the rim's blur. A kept pose (or the better of two ambiguous ones) that does not fit
+// the image is PoseInconsistent: a doubt between two poses of which neither fits is no
+// doubt.
 Status choosePose(const ReconstructionConfig& config, const Pose* expected, ReconstructionResult& out) {
   const ReconstructionOptions& o = config.options;
   PoseCandidates& c = out.candidates;
@@ -197,7 +197,8 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
   if (ok(poseStatus)) poseStatus = choosePose(config, expected, out);
   // A halfway pose is not refined: the refinement would choose between the circles on the
   // same spots that could not.
-  if (ok(poseStatus) && config.options.refine_pose && !out.halfway_pose) out.steps.refine = refineReconstructedPose(config, out);
+  if (ok(poseStatus) && config.options.refine_pose && !out.halfway_pose)
+    out.steps.refine = refineReconstructedPose(config, out);
   if (!ok(poseStatus)) return fail(out.steps.pose, poseStatus);
   out.steps.pose = Status::Ok;
   out.status = Status::Ok;

@@ -17,6 +17,7 @@
 #include "app/panels/control_panel.h"
 #include "app/main_window/frame_view.h"
 #include "app/main_window/main_window.h"
+#include "app/main_window/results_text.h"
 #include "app/panels/source_panel.h"
 #include "app/worker/worker.h"
 #include "app_test_classes.h"
@@ -157,6 +158,28 @@ void FileTest::samplesOpenFromTheMenu() {
   QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample08_pattern.png"; }));
   QTRY_VERIFY(!w.worker()->isRunning());
   QVERIFY(w.lastError().isEmpty());
+}
+
+// The results text of a frame whose spots could not tell the rim's two circles apart: an
+// ok pose halfway between them, or AmbiguousPose without one; both circles are listed.
+void FileTest::resultsShowBothPosesOfADoubt() {
+  DisplayPacket packet;
+  FrameResult& r = packet.result;
+  r.status = Status::Ok;
+  r.pose = Pose{0, 0, 10, 1, 2, 2000};
+  r.ambiguous_poses = std::array<Pose, 2>{Pose{3, 0, 10, 1, 2, 2000}, Pose{-3, 0, 10, 1, 2, 2000}};
+  QString text = formatResults(packet);
+  QVERIFY(text.contains(QStringLiteral("halfway between:")));
+  QVERIFY(text.contains(QStringLiteral("Alt 1 Rx    3.00")));
+  QVERIFY(text.contains(QStringLiteral("Alt 2 Rx   -3.00")));
+  r.status = Status::AmbiguousPose;
+  r.pose.reset();
+  text = formatResults(packet);
+  QVERIFY(text.contains(QStringLiteral("Pose      -")));
+  QVERIFY(text.contains(QStringLiteral("the rim's two poses:")));
+  QVERIFY(text.contains(QStringLiteral("Alt 2 Rx   -3.00")));
+  r.ambiguous_poses.reset();
+  QVERIFY(!formatResults(packet).contains(QStringLiteral("Alt 1")));
 }
 
 }  // namespace imagepro::app::test
