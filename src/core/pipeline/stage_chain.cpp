@@ -174,6 +174,10 @@ void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsTo
   out.times[Stage::Reconstruction] += microsecondsSince(start);
 }
 
+// A reconstruction that found a pose fitting the image: Ok, or AmbiguousPose (two poses
+// that both fit). What the ellipse stage's candidates are tested by.
+bool givesAPose(Status s) { return s == Status::Ok || s == Status::AmbiguousPose; }
+
 // Several targets found (AmbiguousTarget) where one is wanted. A photograph's ring, eye or
 // crumpled tissue with two dark marks inside can pass the ellipse stage's test of a target
 // but not the reconstruction's (the spots' own search, the pose and its self-check). When
@@ -188,7 +192,7 @@ bool keepTheOneThatReconstructs(const Settings& settings, const cv::Mat& grey, S
   for (std::size_t i = 0; i < chain.detections.size() && fitting < 2; ++i) {
     const Status s = reconstructTarget(config, grey, chain.detections[i].ellipse, out.threshold,
                                        chain.reconstruction_ws, chain.reconstruction, expected);
-    if (s == Status::Ok || s == Status::AmbiguousPose) {
+    if (givesAPose(s)) {
       ++fitting;
       kept = i;
     }
@@ -215,7 +219,7 @@ bool tryRunnersUp(const Settings& settings, const cv::Mat& grey, StageChain& cha
   for (const TargetDetection& d : chain.ellipse_ws.runners_up) {
     const Status s = reconstructTarget(config, grey, d.ellipse, out.threshold, chain.reconstruction_ws,
                                        chain.reconstruction, expected);
-    if (s != Status::Ok && s != Status::AmbiguousPose) continue;
+    if (!givesAPose(s)) continue;
     chain.detections.front() = d;
     out.targets.front() = summary(d);
     out.detected_region = d.bbox;
