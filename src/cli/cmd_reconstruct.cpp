@@ -33,6 +33,8 @@ std::string jsonRow(const std::string& frame, const FrameResult& r) {
   row["frame"] = frame;
   row["status"] = std::string(statusName(r.status));
   if (ok(r.status) && r.pose) put(row, *r.pose);
+  if (r.rim_seen > 0.0) row["rim_seen"] = r.rim_seen;
+  if (r.reached == ApplicationLevel::Reconstruction) row["lens_inverse"] = lensInverseName(r.lens_inverse);
   if (r.ambiguous_poses) {
     // Both of the rim's circles, the one that fits the spots better first: AmbiguousPose,
     // or ok with the pose halfway between them.
@@ -90,7 +92,8 @@ int run(const Args& args) {
   Engine engine(settings);
   FrameResult result;
   if (format == "csv")
-    std::printf("%s\n", poseCsvHeader(with_truth ? "true_Rx_deg,true_Ry_deg,true_Rz_deg,true_Tx_mm,true_Ty_mm,true_Tz_mm" : "").c_str());
+    std::printf("%s\n", poseCsvHeader(with_truth ? "true_Rx_deg,true_Ry_deg,true_Rz_deg,true_Tx_mm,true_Ty_mm,true_Tz_mm,rim_seen"
+                                                 : "rim_seen").c_str());
   else
     std::printf("[");
   bool first = true;
@@ -116,6 +119,7 @@ int run(const Args& args) {
       } else if (with_truth) {
         extra = ",,,,,";
       }
+      extra += (with_truth ? "," : "") + rimSeenCell(result);
       std::printf("%s\n", poseCsvRow(frame, result.status, result.pose, extra).c_str());
     } else {
       std::printf("%s\n  %s", first ? "" : ",", jsonRow(frame, result).c_str());

@@ -158,17 +158,25 @@ const CommandRegistration kRegistration{{
     "the same frames) and write DIR/frame_00000.png ... and DIR/truth.csv, the pose CSV\n"
     "with status NoTarget and no pose for a frame without the target, then in_view,\n"
     "background (the photograph), white, black (the target's grey levels), light_shape,\n"
-    "light_amplitude, light_gain, blur_px, motion_px, motion_deg, noise_sigma, jpeg_quality.\n"
+    "light_amplitude, light_gain, blur_px, motion_px, motion_deg, noise_sigma, jpeg_quality,\n"
+    "occluder_mm, occluder_grey (0: none), glare_mm (0: none).\n"
     "  --backgrounds DIR the photographs (JPEG, PNG); default $IMAGEPRO_BACKGROUNDS, else\n"
     "                    Debian's opencv-doc sample photographs\n"
     "  --negatives M     (real) M more frames, DIR/negative_00000.png ..., drawn the same way\n"
     "                    but without the target: false detections show there\n"
     "  --hidden K        (video) frames without the target in the middle (default 12)\n"
+    "  --webcam          (real) what a rig does to the target: a flat occluder 10-25 mm wide\n"
+    "                    across the rim on half the stills (dark or grey, clear of the spots),\n"
+    "                    a saturating glare 4-12 mm across on the paper and a dim room (paper\n"
+    "                    at grey 70-120) on 30 % each. With the wide lens of\n"
+    "                    data/webcam-1280x720.json (--config) it is the webcam set of\n"
+    "                    docs/accuracy.md\n"
+    "  --occluders F --glare F --dim F   (real) the share (0..1) of stills with each effect\n"
     "  --seed N          the set to draw (default: the settings' virtual seed)\n\n"
     "Frames are written to a staging folder and moved in only when all are rendered, so\n"
     "an interrupted render leaves DIR as it was (or, if stopped while moving them in, no\n"
     "truth.csv): truth.csv never names frames other than the ones beside it.",
-    {"pattern", "append"},
+    {"pattern", "append", "webcam"},
     run,
 }};
 

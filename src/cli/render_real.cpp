@@ -11,7 +11,8 @@
 
 namespace imagepro::cli {
 
-const std::vector<std::string> kRealSceneOptions = {"backgrounds", "negatives", "hidden"};
+const std::vector<std::string> kRealSceneOptions = {"backgrounds", "negatives", "hidden", "webcam", "occluders", "glare",
+                                                     "dim"};
 const std::vector<std::string> kVirtualOnlyOptions = {"mode",  "motion", "axis",  "amplitude",  "period",
                                                       "noise", "blur",   "clutter", "gradient", "white",
                                                       "black", "background", "rate", "pose",   "pattern",
@@ -35,7 +36,7 @@ std::string number(double v) {
 
 // truth.csv's columns after the pose: what the frame shows and how it was degraded.
 const char* kColumns = "in_view,background,white,black,light_shape,light_amplitude,light_gain,blur_px,motion_px,"
-                       "motion_deg,noise_sigma,jpeg_quality";
+                       "motion_deg,noise_sigma,jpeg_quality,occluder_mm,occluder_grey,glare_mm";
 
 std::string extraColumns(const RealSceneFrame& f) {
   const SceneConditions& c = f.conditions;
@@ -43,7 +44,23 @@ std::string extraColumns(const RealSceneFrame& f) {
          std::to_string(f.look.white) + "," + std::to_string(f.look.black) + "," +
          (c.light_shape == LightShape::Ramp ? "ramp" : "vignette") + "," + number(c.light_amplitude) + "," +
          number(c.light_gain) + "," + number(c.blur_sigma_px) + "," + number(c.motion_blur_px) + "," +
-         number(c.motion_direction_deg) + "," + number(c.noise_sigma) + "," + std::to_string(c.jpeg_quality);
+         number(c.motion_direction_deg) + "," + number(c.noise_sigma) + "," + std::to_string(c.jpeg_quality) + "," +
+         number(f.rig.occluder.present ? f.rig.occluder.width_mm : 0.0) + "," +
+         std::to_string(f.rig.occluder.present ? f.rig.occluder.level : 0) + "," +
+         number(f.rig.glare.present ? f.rig.glare.diameter_mm : 0.0);
+}
+
+double fraction(const Args& args, const std::string& key, double fallback) {
+  const double v = args.number(key, fallback);
+  if (!(v >= 0.0 && v <= 1.0)) throw UsageError("--" + key + " must be 0..1 (the share of stills)");
+  return v;
+}
+
+// --webcam sets issue 35's shares; --occluders, --glare and --dim each override one.
+RigEffects rigEffects(const Args& args) {
+  const RigEffects base = args.has("webcam") ? kWebcamRigEffects : RigEffects{};
+  return {fraction(args, "occluders", base.occluder_fraction), fraction(args, "glare", base.glare_fraction),
+          fraction(args, "dim", base.dim_fraction)};
 }
 
 std::string frameName(const char* stem, int i) {
@@ -59,6 +76,8 @@ int renderRealScenes(const Args& args, const Settings& settings, bool video) {
     if (args.has(key)) throw UsageError("--" + key + " applies to --scene virtual only");
   if (video && args.has("negatives")) throw UsageError("--negatives applies to --scene real only");
   if (!video && args.has("hidden")) throw UsageError("--hidden applies to --scene video only");
+  for (const char* key : {"webcam", "occluders", "glare", "dim"})
+    if (video && args.has(key)) throw UsageError(std::string("--") + key + " applies to --scene real only");
   const auto out_dir = args.value("out");
   if (!out_dir || out_dir->empty()) throw UsageError("--out DIR is required");
   const int frames = count(args, "frames", video ? 150 : 1, 100000);
@@ -73,7 +92,7 @@ int renderRealScenes(const Args& args, const Settings& settings, bool video) {
   if (photos.empty())
     throw InputError(dir + ": no photographs (JPEG or PNG) there; name a folder with --backgrounds or install " +
                      "Debian's opencv-doc (tools/setup.sh does)");
-  const RealScenes scenes(settings, std::move(photos));
+  const RealScenes scenes(settings, std::move(photos), rigEffects(args));
 
   RenderOutput out(*out_dir, false, poseCsvHeader(kColumns));
   const auto start = std::chrono::steady_clock::now();

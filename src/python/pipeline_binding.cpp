@@ -249,6 +249,11 @@ raise_for_status() raises it as its imagepro exception.)")
           "The two poses the rim allows when the spots could not tell them apart (AmbiguousPose, or ok "
           "with the pose halfway between them), the one fitting the spots better first.")
       .def_property_readonly("targets", [](const Result& r) { return r.frame.targets; })
+      .def_property_readonly(
+          "rim_seen", [](const Result& r) { return r.frame.rim_seen > 0.0 ? py::object(py::float_(r.frame.rim_seen)) : py::none(); },
+          "The share of the rim seen (0..1; less where an occluder hides part of it), or None without a fitted rim.")
+      .def_property_readonly("lens_inverse", [](const Result& r) { return std::string(lensInverseName(r.frame.lens_inverse)); },
+                             "Which inverse of the lens model corrected the features: none, taylor, exact, exact-wide-lens.")
       .def_property_readonly("index", [](const Result& r) { return r.frame.index; })
       .def_property_readonly("timestamp_s", [](const Result& r) { return r.frame.timestamp_s; })
       .def_property_readonly("reached", [](const Result& r) { return std::string(enumName(r.frame.reached)); },

@@ -3,10 +3,12 @@
 // target; --scene chooses one or both.
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "cli/command.h"
 #include "core/common/atomic_file.h"
+#include "core/common/data_directory.h"
 #include "core/source/background_photos.h"
 #include "studies/real_scene_accuracy.h"
 #include "studies/report.h"
@@ -24,7 +26,8 @@ int count(const Args& args, const std::string& key, int fallback, int least) {
 }
 
 int run(const Args& args) {
-  args.rejectUnknown({"frames", "out", "seed", "scene", "stills", "negatives", "videos", "video-frames", "backgrounds"});
+  args.rejectUnknown({"frames", "out", "seed", "scene", "stills", "negatives", "videos", "video-frames", "backgrounds",
+                      "webcam-stills", "webcam-negatives", "webcam-config"});
   const int frames = count(args, "frames", 300, 1);
   const std::string out = args.valueOr("out", "docs/accuracy.md");
   const int seed = args.integer("seed", 1);
@@ -33,7 +36,8 @@ int run(const Args& args) {
   if (scene != "all" && scene != "virtual" && scene != "real") throw UsageError("--scene must be virtual, real or all");
   const bool virtual_part = scene != "real", real_part = scene != "virtual";
   if (!real_part)
-    for (const char* key : {"stills", "negatives", "videos", "video-frames", "backgrounds"})
+    for (const char* key : {"stills", "negatives", "videos", "video-frames", "backgrounds", "webcam-stills",
+                            "webcam-negatives", "webcam-config"})
       if (args.has(key)) throw UsageError(std::string("--") + key + " applies to the real scenes only");
   if (!virtual_part && args.has("frames")) throw UsageError("--frames applies to the virtual scenes only");
   RealSceneStudyOptions real;
@@ -43,6 +47,14 @@ int run(const Args& args) {
   real.video_frames = count(args, "video-frames", real.video_frames, 2 * real.hidden);
   real.seed = static_cast<std::uint64_t>(seed);
   real.backgrounds = args.valueOr("backgrounds", defaultBackgroundsDir());
+  // The webcam set: the same photographs and seed, its own camera and the rig's effects.
+  RealSceneStudyOptions webcam = real;
+  webcam.stills = count(args, "webcam-stills", 400, 0);
+  webcam.negatives = count(args, "webcam-negatives", 100, 0);
+  webcam.videos = 0;
+  webcam.rig = kWebcamRigEffects;
+  const std::string webcam_config =
+      args.valueOr("webcam-config", (dataDirectory() / "webcam-1280x720.json").string());
   const Settings settings = loadConfig(args);
   const auto start = std::chrono::steady_clock::now();
 
@@ -51,8 +63,10 @@ int run(const Args& args) {
   if (scene != "all") command += " --scene " + scene;
   if (virtual_part) command += format(" --frames %d", frames);
   if (real_part)
-    command += format(" --stills %d --negatives %d --videos %d --video-frames %d", real.stills, real.negatives,
-                      real.videos, real.video_frames);
+    command += format(" --stills %d --negatives %d --videos %d --video-frames %d --webcam-stills %d "
+                      "--webcam-negatives %d",
+                      real.stills, real.negatives, real.videos, real.video_frames, webcam.stills, webcam.negatives);
+  if (args.has("webcam-config")) command += " --webcam-config " + webcam_config;
   if (args.has("backgrounds")) command += " --backgrounds " + real.backgrounds;
   command += format(" --seed %d", seed);
 
@@ -66,6 +80,15 @@ int run(const Args& args) {
     std::string error;
     if (runRealSceneStudy(settings, real, study, error)) {
       body += realSceneSection(settings, real, study);
+      if (webcam.stills > 0) {
+        // The user's settings with the webcam's camera for every source.
+        Settings webcam_settings = settings;
+        if (!ok(loadSettings(webcam_config, webcam_settings, error))) throw InputError(error);
+        RealSceneStudy webcam_study;
+        if (!runRealSceneStudy(webcam_settings, webcam, webcam_study, error)) throw InputError(error);
+        body += webcamSection(webcam_settings, std::filesystem::path(webcam_config).filename().string(), webcam,
+                              webcam_study);
+      }
     } else if (!virtual_part) {
       throw InputError(error + "; name a folder with --backgrounds or install Debian's opencv-doc");
     } else {
@@ -108,6 +131,11 @@ const CommandRegistration kRegistration{{
     "  --videos N         real-scene videos, seeds S, S+1, ... (default 4)\n"
     "  --video-frames N   frames per video, 12 of them hidden (default 150, at least 24)\n"
     "  --backgrounds DIR  the photographs (default $IMAGEPRO_BACKGROUNDS or opencv-doc's)\n"
+    "  --webcam-stills N  stills of the webcam set (render --scene real --webcam): occluders,\n"
+    "                     glare and dim light through a wide lens (default 400; 0: none)\n"
+    "  --webcam-negatives N  its photographs without the target (default 100)\n"
+    "  --webcam-config FILE  its settings, read over --config's (default the data folder's\n"
+    "                     webcam-1280x720.json)\n"
     "  --seed S           random poses, photographs and effects (default 1)\n"
     "  --out FILE         the report (default docs/accuracy.md)\n"
     "Without photographs --scene all writes the virtual part and says the real one is missing.",

@@ -14,6 +14,7 @@
 #include "core/common/geometry.h"
 #include "core/common/status.h"
 #include "core/settings/settings.h"
+#include "core/source/rig_effects.h"
 
 namespace imagepro::studies {
 
@@ -25,6 +26,7 @@ struct RealSceneStudyOptions {
   int hidden = 12;  // frames without the target in the middle of each video
   std::uint64_t seed = 1;
   std::string backgrounds;  // the photographs' folder
+  RigEffects rig;           // occluders, glare, dim light on the stills (the webcam set)
 };
 
 // A pose within this rotation error of the truth is correct.
@@ -44,6 +46,7 @@ struct DetectorTally {
   PoseTally stills;
   int negatives = 0, false_detections = 0;  // a pose on a photograph without the object
   PoseTally video;                          // the videos' visible frames
+  std::map<std::string, PoseTally> by_effect;  // the stills by the rig effects they show (webcam set)
   int hidden = 0, found_in_hiding = 0;
   // Per video: frames from the target's reappearance to its first correct pose (0: at
   // once), -1 when none came.
@@ -66,5 +69,11 @@ bool runRealSceneStudy(const Settings& settings, const RealSceneStudyOptions& op
 // target and marker side by side against the goals.
 std::string realSceneSection(const Settings& settings, const RealSceneStudyOptions& options,
                              const RealSceneStudy& study);
+
+// The webcam set's section (issue 35): stills and negatives with options.rig's effects seen
+// through `settings`' camera (a wide lens), target and marker side by side, and the stills'
+// misses by effect. `config` names the settings file the command was given.
+std::string webcamSection(const Settings& settings, const std::string& config, const RealSceneStudyOptions& options,
+                          const RealSceneStudy& study);
 
 }  // namespace imagepro::studies

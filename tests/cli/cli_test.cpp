@@ -178,9 +178,10 @@ TEST(Cli, TheInputPicksItsSourcesCamera) {
   ASSERT_TRUE(writeFileAtomically((dir / "cameras.json").string(),
                                   R"({"cameras": {"file": {"image_plane_distance_mm": 16.0}}})", e));
   const std::string config = " --config " + (dir / "cameras.json").string();
-  const auto tz = [](const std::string& csv) {
-    const std::string row = lines(csv).at(1);
-    return std::stod(row.substr(row.rfind(',') + 1));
+  const auto tz = [](const std::string& csv) {  // the 8th column
+    std::string row = lines(csv).at(1);
+    for (int k = 0; k < 7; ++k) row = row.substr(row.find(',') + 1);
+    return std::stod(row.substr(0, row.find(',')));
   };
   r = cli("reconstruct" + config + " " + (dir / "frame_00000.png").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -206,8 +207,10 @@ TEST(Cli, ReconstructWritesARowPerFrameEvenForBadFiles) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const auto rows = lines(r.out);
   ASSERT_EQ(rows.size(), 4u) << r.out;
-  EXPECT_EQ(rows[0], "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm");
+  EXPECT_EQ(rows[0], "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,rim_seen");
   EXPECT_NE(rows[1].find(",ok,"), std::string::npos) << rows[1];
+  // A whole rim seen: its share is 1.
+  EXPECT_EQ(rows[1].substr(rows[1].rfind(',')), ",1.000") << rows[1];
   EXPECT_NE(rows[2].find(",FileNotFound,,,,,,"), std::string::npos) << rows[2];
   EXPECT_NE(rows[3].find(",FileUnreadable,,,,,,"), std::string::npos) << rows[3];
 }

@@ -24,7 +24,7 @@ using test::freshDir;
 using test::lines;
 using test::studies;
 
-constexpr int kSeed = 5, kStills = 12, kNegatives = 4, kVideoFrames = 30, kHidden = 12;
+constexpr int kSeed = 5, kStills = 12, kNegatives = 4, kVideoFrames = 30, kHidden = 12, kWebcamStills = 10;
 
 // The cells of the table row that starts with `measure`, in the section that starts at
 // `heading`: measure, goal, target, marker.
@@ -123,8 +123,8 @@ TEST(StudiesRealScenes, TargetBesideTheMarkerAsTheEngineGivesIt) {
   std::vector<std::string> photos = listBackgrounds(defaultBackgroundsDir());
   const fs::path out = freshDir("studies_real_accuracy") / "accuracy.md";
   const std::string options = "--stills " + std::to_string(kStills) + " --negatives " + std::to_string(kNegatives) +
-                              " --videos 1 --video-frames " + std::to_string(kVideoFrames) + " --seed " +
-                              std::to_string(kSeed);
+                              " --videos 1 --video-frames " + std::to_string(kVideoFrames) + " --webcam-stills " +
+                              std::to_string(kWebcamStills) + " --webcam-negatives 2 --seed " + std::to_string(kSeed);
   const test::CliRun r = studies("accuracy --scene real " + options + " --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::string md, e;
@@ -188,6 +188,32 @@ TEST(StudiesRealScenes, TargetBesideTheMarkerAsTheEngineGivesIt) {
   // The marker, large and clear in the video, is found and right most of the time.
   EXPECT_GE(counted(row(md, video_table, "frames with a correct pose (rotation error <= 5 deg)").at(3)).first,
             (kVideoFrames - kHidden) / 2);
+
+  // The webcam set: its stills through the engine with the shipped wide lens and the rig's
+  // effects, as the report counts them, and every still in the table by effect.
+  Settings webcam;
+  ASSERT_EQ(loadSettings(std::string(IMAGEPRO_DATA_DIR) + "/webcam-1280x720.json", webcam, error), Status::Ok) << error;
+  const RealScenes rigged(webcam, listBackgrounds(defaultBackgroundsDir()), kWebcamRigEffects);
+  Engine webcam_engine(webcam);
+  EngineFigures webcam_stills;
+  for (int i = 0; i < kWebcamStills; ++i) {
+    RealSceneFrame f;
+    ASSERT_TRUE(rigged.still(kSeed, i, true, f, error)) << error;
+    webcam_engine.resetTracking();
+    webcam_stills.add(process(webcam_engine, f, i, "still_" + std::to_string(i) + ".png"), *f.truth);
+  }
+  const std::string webcam_table = "## The webcam set";
+  ASSERT_NE(md.find(webcam_table), std::string::npos);
+  expectColumn(md, webcam_table, "frames with a pose (of the stills)", 2, kWebcamStills, &webcam_stills);
+  int by_effect = 0;
+  const std::size_t effects = md.find("### The target's stills by what the rig did to them");
+  ASSERT_NE(effects, std::string::npos);
+  // The table's rows: from the line after its header and rule to the first line not a row.
+  std::size_t at = md.find("| --- |", effects);
+  ASSERT_NE(at, std::string::npos);
+  for (at = md.find('\n', at) + 1; md.compare(at, 2, "| ") == 0; at = md.find('\n', at) + 1)
+    by_effect += std::stoi(md.substr(md.find(" | ", at + 2) + 3));
+  EXPECT_EQ(by_effect, kWebcamStills);
 }
 
 // Without photographs: the real part alone is an error that says why; with the virtual

@@ -56,6 +56,9 @@ QString formatResults(const DisplayPacket& packet) {
       lines << QStringLiteral("          Sampson %1 px").arg(t.sampson_px, 0, 'f', 3);
     }
   }
+  if (r.rim_seen > 0.0) lines << QStringLiteral("Rim seen  %1 %").arg(100.0 * r.rim_seen, 0, 'f', 0);
+  if (r.reached == ApplicationLevel::Reconstruction && r.lens_inverse == LensInverse::ExactWideLens)
+    lines << QStringLiteral("Lens      exact inverse (wide lens)");
   if (r.pose) lines << poseLines("Pose", *r.pose);
   else lines << QStringLiteral("Pose      -");
   if (r.ambiguous_poses) {

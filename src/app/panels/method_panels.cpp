@@ -205,6 +205,8 @@ QWidget* reconstructionPanel(SettingsBinder& binder) {
                      "weightedSpotCentres", QObject::tr("Centre each spot under a Gaussian window that follows it, instead of the plain centroid of its box")));
   form->addRow(named(binder.check(QObject::tr("Rim edge model"), [r](Settings& s) -> auto& { return r(s).rim_edge_model; }),
                      "rimEdgeModel", QObject::tr("Sub-pixel rim: edge levels fitted over the whole rim and the blur's shrink of a curved edge undone, instead of each point between its own plateaus")));
+  form->addRow(named(binder.check(QObject::tr("Robust rim fit"), [r](Settings& s) -> auto& { return r(s).robust_rim_fit; }),
+                     "robustRimFit", QObject::tr("Leave contour points off the rim (an occluder's edge, glare) out of the rim's fit and the self-check")));
   form->addRow(named(binder.check(QObject::tr("Refine the pose"), [r](Settings& s) -> auto& { return r(s).refine_pose; }),
                      "refinePose", QObject::tr("A few Levenberg-Marquardt steps of the pose against the rim's edge points and the two spots")));
   form->addRow(QObject::tr("Crop margin"), named(binder.intSpin([r](Settings& s) -> auto& { return r(s).crop_margin_px; }, QStringLiteral(" px")),

@@ -307,6 +307,16 @@ constexpr double kOccludedReach = 1.5;
 constexpr double kSpotPairSizeRatio = 1.3;
 constexpr double kSpotPairSlack = 2.0;
 
+// Could dark paths p and q be the target's two spots? The same size within
+// kSpotPairSizeRatio, and as far apart as the spots are for their size (rf / r0,
+// foreshortened or stretched by up to kSpotPairSlack).
+bool spotPair(const TargetGeometry& g, const PathSummary& p, const PathSummary& q) {
+  if (std::max(p.rms_radius, q.rms_radius) > kSpotPairSizeRatio * std::min(p.rms_radius, q.rms_radius)) return false;
+  const double ratio = g.spot_offset_mm / g.spot_radius_mm;
+  const double apart = std::hypot(p.cx - q.cx, p.cy - q.cy) / (0.5 * (p.rms_radius + q.rms_radius));
+  return apart >= ratio / kSpotPairSlack && apart <= ratio * kSpotPairSlack;
+}
+
 bool mayBeOccludedTarget(const TargetGeometry& g, std::size_t i, const EllipseWorkspace& ws,
                          const std::vector<TargetDetection>& found) {
   const PathSummary& s = ws.paths[i];
@@ -319,19 +329,10 @@ bool mayBeOccludedTarget(const TargetGeometry& g, std::size_t i, const EllipseWo
            t.rms_radius <= expected * 2.0 * kSpotSizeFactor && unitFrame(e, t.cx, t.cy).norm() < kOccludedReach &&
            !claimed(j, found);
   };
-  const double ratio = g.spot_offset_mm / g.spot_radius_mm;
   for (std::size_t a = 0; a < ws.dark.size(); ++a) {
     if (!candidate(ws.dark[a])) continue;
-    const PathSummary& p = ws.paths[ws.dark[a]];
-    for (std::size_t b = a + 1; b < ws.dark.size(); ++b) {
-      if (!candidate(ws.dark[b])) continue;
-      const PathSummary& q = ws.paths[ws.dark[b]];
-      if (std::max(p.rms_radius, q.rms_radius) > kSpotPairSizeRatio * std::min(p.rms_radius, q.rms_radius)) continue;
-      const double apart = std::hypot(p.cx - q.cx, p.cy - q.cy) / (0.5 * (p.rms_radius + q.rms_radius));
-      if (apart >= ratio / kSpotPairSlack && apart <= ratio * kSpotPairSlack) {
-        return true;
-      }
-    }
+    for (std::size_t b = a + 1; b < ws.dark.size(); ++b)
+      if (candidate(ws.dark[b]) && spotPair(g, ws.paths[ws.dark[a]], ws.paths[ws.dark[b]])) return true;
   }
   return false;
 }
@@ -383,6 +384,153 @@ Status robustTarget(const EllipseOptions& o, const Paths& paths, std::size_t i, 
   traceEllipse(fit, ws.inliers, o.trace_inlier_px, image, trace);
   fit.sampson_px = trace.mean_sampson_px;
   return fitAccepted(o, fit, trace, o.robust_min_traced_fraction) ? Status::Ok : Status::NotAnEllipse;
+}
+
+// Pairs of dark paths that may be the spots, tried at most, the likeliest first.
+constexpr int kMaxSpotPairs = 64;
+// Other dark paths of the spots' size within this many times the spots' distance of their
+// midpoint count against a pair: inside the disk, clear of the rim.
+constexpr double kSpotPairRoundness = 1.2;
+// The seeds' consensus: with the robust pass's least share of them on the rim (0.75), a
+// clean six-point sample comes in 60 tries but for once in ten thousand.
+constexpr int kSeedIterations = 60;
+// The rim lies within this many times its radius, as the spots measure it, of their midpoint,
+// and beyond this many times the spots' distance.
+constexpr double kRimReach = 1.6;
+constexpr double kRimBeyondSpots = 0.7;
+// With both spots where the target has them, a rim traced over this share (or the robust
+// pass's, if less) is the target's: tape crossing the rim at a slant hides a long arc.
+constexpr double kSpotsMinTraced = 0.6;
+
+// The pairs of dark paths that may be a target's spots (spotPair, neither a found target's),
+// into ws.pairs, the likeliest first: fewest other dark paths of their size round them (the
+// spots lie on clean paper; a photograph's texture crowds its blobs), then the most equal in
+// size. The paths are swept in order of x, so only neighbours are compared.
+void listSpotPairs(const TargetGeometry& g, EllipseWorkspace& ws, const std::vector<TargetDetection>& found) {
+  ws.pairs.clear();
+  ws.by_x.assign(ws.dark.begin(), ws.dark.end());
+  std::sort(ws.by_x.begin(), ws.by_x.end(), [&](std::size_t i, std::size_t j) { return ws.paths[i].cx < ws.paths[j].cx; });
+  const double ratio = g.spot_offset_mm / g.spot_radius_mm;
+  auto firstAtOrAfter = [&](double x) {
+    return std::lower_bound(ws.by_x.begin(), ws.by_x.end(), x,
+                            [&](std::size_t j, double v) { return ws.paths[j].cx < v; });
+  };
+  for (auto ia = ws.by_x.begin(); ia != ws.by_x.end(); ++ia) {
+    const PathSummary& p = ws.paths[*ia];
+    if (claimed(*ia, found)) continue;
+    // Two spots lie at most ratio * slack times their mean size apart, and the other one is
+    // at most kSpotPairSizeRatio times this one's size.
+    const double most = ratio * kSpotPairSlack * 0.5 * (1.0 + kSpotPairSizeRatio) * p.rms_radius;
+    for (auto ib = ia + 1; ib != ws.by_x.end() && ws.paths[*ib].cx - p.cx <= most; ++ib) {
+      const PathSummary& q = ws.paths[*ib];
+      if (claimed(*ib, found) || !spotPair(g, p, q)) continue;
+      const double mx = 0.5 * (p.cx + q.cx), my = 0.5 * (p.cy + q.cy);
+      const double round = kSpotPairRoundness * std::hypot(p.cx - q.cx, p.cy - q.cy);
+      const double size = 0.5 * (p.rms_radius + q.rms_radius);
+      int others = 0;
+      for (auto k = firstAtOrAfter(mx - round); k != ws.by_x.end() && ws.paths[*k].cx <= mx + round; ++k) {
+        const PathSummary& t = ws.paths[*k];
+        if (*k == *ia || *k == *ib || t.rms_radius < size / kSpotSizeFactor || t.rms_radius > size * kSpotSizeFactor)
+          continue;
+        others += std::hypot(t.cx - mx, t.cy - my) <= round;
+      }
+      ws.pairs.push_back({others, std::abs(std::log(p.rms_radius / q.rms_radius)), *ia, *ib});
+    }
+  }
+  std::sort(ws.pairs.begin(), ws.pairs.end());
+}
+
+// The target found from a pair of spots when no path outlines its rim (detect.h). Every
+// other path's edge pixels within reach of the pair whose gradient points towards it
+// (brighter inside) are gathered; in each of kSeedArcs directions about the pair the
+// nearest of them beyond the spots is where the rim would be, and the consensus fit of those
+// few seeds (cheap: one point a direction) proposes the rim. All gathered pixels on it are
+// then fitted twice, and the ellipse accepted as the robust pass accepts one (over
+// kSpotsMinTraced of it traced), holding exactly that pair as its spots.
+void targetsFromSpots(const EllipseOptions& o, const TargetGeometry& g, const Paths& paths, cv::Size image,
+                      EllipseWorkspace& ws, std::vector<TargetDetection>& out) {
+  listSpotPairs(g, ws, out);
+  std::array<std::size_t, 2> spots;
+  std::array<EdgePixel, kSeedArcs> nearest;
+  std::array<double, kSeedArcs> nearest_d2;
+  const double min_traced = std::min(o.robust_min_traced_fraction, kSpotsMinTraced);
+  EllipseOptions seeding = o;
+  seeding.robust_iterations = std::min(o.robust_iterations, kSeedIterations);
+  const std::size_t tries = std::min(ws.pairs.size(), static_cast<std::size_t>(kMaxSpotPairs));
+  for (std::size_t t = 0; t < tries; ++t) {
+    const std::size_t a = ws.pairs[t].a, b = ws.pairs[t].b;
+    if (claimed(a, out) || claimed(b, out)) continue;
+    const PathSummary &p = ws.paths[a], &q = ws.paths[b];
+    // The rim's radius by the spots' size (R / r0) and by their distance (R / rf): a tilt
+    // shortens either, the distance only along one direction, so the larger one is taken.
+    const double apart = std::hypot(p.cx - q.cx, p.cy - q.cy);
+    const double rim = std::max(0.5 * (p.rms_radius + q.rms_radius) * g.radius_mm / g.spot_radius_mm,
+                                apart * g.radius_mm / g.spot_offset_mm);
+    const double mx = 0.5 * (p.cx + q.cx), my = 0.5 * (p.cy + q.cy), reach = kRimReach * rim;
+    // The rim lies at least (R - rf / 2) / R of its minor axis from the pair's midpoint, and
+    // the minor axis is at least half the major one up to 60 deg of tilt.
+    const double beyond = kRimBeyondSpots * apart;
+    const cv::Rect box(static_cast<int>(std::floor(mx - reach)), static_cast<int>(std::floor(my - reach)),
+                       static_cast<int>(2.0 * reach) + 2, static_cast<int>(2.0 * reach) + 2);
+    ws.gathered.clear();
+    ws.gathered_counts.assign(ws.paths.size(), 0);
+    nearest_d2.fill(std::numeric_limits<double>::infinity());
+    for (std::size_t j = 0; j < ws.paths.size(); ++j) {
+      if (j == a || j == b || (ws.paths[j].bbox & box).area() == 0) continue;
+      for (const EdgePixel& e : paths.path(j)) {
+        const double dx = e.x - mx, dy = e.y - my, d2 = dx * dx + dy * dy;
+        if (d2 > reach * reach || e.gx * dx + e.gy * dy >= 0.0) continue;
+        ws.gathered.push_back(e);
+        ++ws.gathered_counts[j];
+        if (d2 < beyond * beyond) continue;
+        const int arc = std::min(kSeedArcs - 1, static_cast<int>((fastAtan2(dy, dx) + kPi) / (2.0 * kPi) * kSeedArcs));
+        if (d2 < nearest_d2[arc]) {
+          nearest_d2[arc] = d2;
+          nearest[arc] = e;
+        }
+      }
+    }
+    ws.seeds.clear();
+    for (int k = 0; k < kSeedArcs; ++k)
+      if (std::isfinite(nearest_d2[k])) ws.seeds.push_back(nearest[k]);
+    if (ws.seeds.size() < static_cast<std::size_t>(min_traced * kSeedArcs)) continue;
+    EllipseFit fit;
+    EllipseTrace trace;
+    if (!ok(consensusFit(seeding, ws.seeds, ws, fit))) continue;
+    // Every gathered pixel on the proposed rim, fitted twice.
+    bool fitted = true;
+    for (int round = 0; round < 2 && fitted; ++round) {
+      ws.inliers.clear();
+      const SampsonBand band(fit, o.trace_inlier_px);
+      for (const EdgePixel& e : ws.gathered)
+        if (band.holds(e.x, e.y)) ws.inliers.push_back(e);
+      ConicMoments m;
+      m.add(std::span<const EdgePixel>(ws.inliers));
+      fitted = ok(fitEllipse(m, fit));
+    }
+    if (!fitted) continue;
+    traceEllipse(fit, ws.inliers, o.trace_inlier_px, image, trace);
+    fit.sampson_px = trace.mean_sampson_px;
+    if (!fitAccepted(o, fit, trace, min_traced)) continue;
+    if (!plausibleTargetView(o, fit.ellipse, image)) continue;
+    if (!findSpots(o, g, fit.ellipse, kNoPath, ws, spots)) continue;
+    if (!((spots[0] == a && spots[1] == b) || (spots[0] == b && spots[1] == a))) continue;
+    PathSummary s;
+    s.fit = fit;
+    s.trace = trace;
+    int x0 = image.width, y0 = image.height, x1 = -1, y1 = -1;
+    for (const EdgePixel& e : ws.inliers) {
+      x0 = std::min<int>(x0, e.x), y0 = std::min<int>(y0, e.y);
+      x1 = std::max<int>(x1, e.x), y1 = std::max<int>(y1, e.y);
+    }
+    s.bbox = cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
+    const auto most = std::max_element(ws.gathered_counts.begin(), ws.gathered_counts.end());
+    TargetDetection d = toDetection(s, static_cast<std::size_t>(most - ws.gathered_counts.begin()));
+    d.spot_paths = spots;
+    d.spots_found = true;
+    d.robust = true;
+    out.push_back(d);
+  }
 }
 
 }  // namespace
@@ -481,6 +629,8 @@ Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Path
       out.push_back(d);
     }
   }
+  if (out.empty() && o.robust_fit && o.method == EllipseMethod::DirectFit)
+    targetsFromSpots(o, g, paths, image, ws, out);
   if (out.size() == 1) return Status::Ok;
   // Several targets: in path order, whichever pass found them.
   std::sort(out.begin(), out.end(),

@@ -28,8 +28,12 @@
 // paths inside their bounding box, smallest box first, skipping a path whose box holds
 // no spots but a found target's, and traces the contour only of an ellipse that holds
 // the spots; detectEllipses fits every path. Two or more targets give AmbiguousTarget
-// (all reported, in path order) unless report_all_targets. Without any target, the
-// thesis's rule picks the best ellipse (lowest error, or highest Bennett score),
+// (all reported, in path order) unless report_all_targets. Without any target so far, one
+// last try with robust_fit (issue 35): from a pair of dark paths shaped like the spots, the
+// rim's edge pixels are gathered from every path around them, gradient pointing inwards,
+// and fitted by consensus; an occluder that joins the disk to the scene beyond the card
+// leaves the rim no path of its own, only arcs of others, while the spots stay whole.
+// Without any target, the thesis's rule picks the best ellipse (lowest error, or highest Bennett score),
 // preferring ellipses that hold any dark path over plain disks, unless
 // require_target_spots; its runners-up stay in the workspace.
 #include <opencv2/core.hpp>
@@ -97,11 +101,28 @@ struct RankedEllipse {
 // How many runners-up of the thesis's choice detectTarget keeps (EllipseWorkspace::runners_up).
 inline constexpr std::size_t kRunnersUp = 8;
 
+// Directions about a pair of spots in which targetsFromSpots takes its nearest edge pixel.
+inline constexpr int kSeedArcs = 64;
+
+// A pair of dark paths that may be a target's spots (targetsFromSpots): other dark paths
+// of their size round them, then how unequal they are (|log| of their sizes' ratio).
+struct SpotPairCandidate {
+  int others = 0;
+  double unequal = 0.0;
+  std::size_t a = kNoPath, b = kNoPath;
+  auto operator<=>(const SpotPairCandidate&) const = default;
+};
+
 // Buffers reused from frame to frame.
 struct EllipseWorkspace {
   std::vector<PathSummary> paths;
   BennettWorkspace bennett;
   std::vector<EdgePixel> inliers;
+  std::vector<EdgePixel> gathered;           // edge pixels about a pair of spots (targetsFromSpots)
+  std::vector<std::size_t> gathered_counts;  // per path: how many of them it gave
+  std::vector<EdgePixel> seeds;              // the nearest of them in each direction
+  std::vector<std::size_t> by_x;             // dark paths in order of their centroid's x
+  std::vector<SpotPairCandidate> pairs;      // pairs of them that may be spots, likeliest first
   std::vector<std::size_t> dark;   // closed paths around dark regions: spot candidates
   std::vector<std::size_t> spots;
   std::vector<std::size_t> order;  // paths that may hold spots, smallest box first

@@ -43,7 +43,7 @@ std::string DataOut::header() {
     extra += stageName(static_cast<Stage>(s));
     extra += "_us";
   }
-  return poseCsvHeader(extra);
+  return poseCsvHeader(extra + ",rim_seen");
 }
 
 std::string DataOut::row(const FrameResult& r) {
@@ -54,6 +54,7 @@ std::string DataOut::row(const FrameResult& r) {
     std::snprintf(buf, sizeof buf, ",%.1f", us);
     extra += buf;
   }
+  extra += ',' + rimSeenCell(r);
   return poseCsvRow(frameLabel(r), r.status, r.pose, extra);
 }
 

@@ -1,5 +1,7 @@
 #include "core/pipeline/frame_result.h"
 
+#include <cstdio>
+
 namespace imagepro {
 
 const char* stageName(Stage s) {
@@ -24,5 +26,12 @@ double StageTimes::total() const {
 }
 
 std::string frameLabel(const FrameResult& r) { return r.name.empty() ? std::to_string(r.index) : r.name; }
+
+std::string rimSeenCell(const FrameResult& r) {
+  if (!(r.rim_seen > 0.0)) return {};
+  char text[16];
+  std::snprintf(text, sizeof text, "%.3f", r.rim_seen);
+  return text;
+}
 
 }  // namespace imagepro

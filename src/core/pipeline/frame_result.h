@@ -13,6 +13,7 @@
 #include "core/common/geometry.h"
 #include "core/common/status.h"
 #include "core/ellipse/ellipse.h"
+#include "core/reconstruction/undistort.h"
 #include "core/segmentation/histogram.h"
 #include "core/settings/options.h"
 
@@ -64,10 +65,18 @@ struct FrameResult {
   // Undistorted features the pose was computed from, for display (full-image pixels).
   std::vector<cv::Point2f> contour_points;
   std::array<cv::Point2f, 2> spots{};  // centre, offset
+  // The share of the rim seen (reconstruction/rim_fit.h), 0..1; 0 when no rim was fitted.
+  // Less than 1 where an occluder hides part of it; contour_points holds only the rim's.
+  double rim_seen = 0.0;
+  // Which inverse of the lens model corrected the features (undistort.h).
+  LensInverse lens_inverse = LensInverse::None;
   StageTimes times;
 };
 
 // The frame's "frame" column (docs/conventions.md): the file name for file input, the index otherwise.
 std::string frameLabel(const FrameResult& result);
+
+// The frame's rim_seen column: the share with three decimals, empty when no rim was fitted.
+std::string rimSeenCell(const FrameResult& result);
 
 }  // namespace imagepro

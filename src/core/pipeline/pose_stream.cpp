@@ -99,6 +99,7 @@ std::string poseStreamJson(const FrameResult& r) {
   out += ",\"timestamp_s\":" + (std::isfinite(r.timestamp_s) ? poseNumber(r.timestamp_s) : std::string("null")) + ",";
   appendStatus(out, r.status);
   appendPose(out, r.status, r.pose);
+  out += ",\"rim_seen\":" + (r.rim_seen > 0.0 ? poseNumber(r.rim_seen) : std::string("null"));
   if (!r.name.empty()) {
     // The library escapes the file name; bytes that are not UTF-8 become U+FFFD.
     out += ",\"name\":" + nlohmann::json(r.name).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);

@@ -39,6 +39,7 @@ TargetSummary summary(const TargetDetection& d) {
 
 // Shows the features the pose was computed from (the last target reconstructed).
 void keepDisplayFeatures(const ReconstructionResult& r, FrameResult& out) {
+  out.rim_seen = r.rim_seen;
   out.contour_points.clear();
   for (const Eigen::Vector2d& p : r.contour) out.contour_points.push_back(point(p));
   out.spots = {point(r.spots.centre_spot), point(r.spots.offset_spot)};
@@ -114,6 +115,7 @@ void restore(const PassOutcome& pass, FrameResult& out) {
   out.detected_region = pass.detected_region;
   out.pose = pass.pose;
   out.contour_points.clear();
+  out.rim_seen = 0.0;
 }
 
 // The passes swap their buffers with the spare ones, so either set may next hold the
@@ -151,6 +153,7 @@ void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsTo
   const auto start = Clock::now();
   out.reached = ApplicationLevel::Reconstruction;
   const ReconstructionConfig config = reconstructionConfig(settings);
+  out.lens_inverse = lensInverse(config);
   if (which == TargetsToReconstruct::Best) {
     out.status = reconstructTarget(config, grey, chain.detections.front().ellipse, out.threshold,
                                    chain.reconstruction_ws, chain.reconstruction, expected);
@@ -318,6 +321,8 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
   out.ambiguous_poses.reset();
   out.detected_region = {};
   out.contour_points.clear();
+  out.rim_seen = 0.0;
+  out.lens_inverse = LensInverse::None;
   for (Stage s : {Stage::Crop, Stage::Threshold, Stage::Edges, Stage::Connectivity, Stage::Ellipse, Stage::Reconstruction})
     out.times[s] = 0.0;
   chain.edges.clear();
@@ -408,6 +413,7 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
       out.pose.reset();
       out.ambiguous_poses.reset();
       out.contour_points.clear();
+      out.rim_seen = 0.0;
     }
     const cv::Mat& image = pass.factor > 1 ? chain.reduced : searched;
     const cv::Rect passRegion = pass.factor > 1 ? cv::Rect(0, 0, image.cols, image.rows) : inside;

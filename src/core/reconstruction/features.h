@@ -40,7 +40,9 @@
 // Spots: the dark 8-connected components (grey at most the middle of the crop's two class
 // means, so that a threshold close to one class cannot swell, shrink or merge them) inside
 // 0.85 of the detected ellipse with an area
-// between 1/5 and 5 times a spot's expected area (pi (r0/R)^2 a b); exactly two are
+// between 1/5 and 5 times a spot's expected area (pi (r0/R)^2 a b), not reaching the edge of
+// that ellipse (an occluder across the rim, a clamp or tape, comes in from beyond the disk,
+// while the spots lie within 0.62 of it); exactly two are
 // expected (SpotsNotFound, AmbiguousSpots otherwise). Each one's position is the centroid
 // weighted by darkness (local white level minus grey) over its box grown by 3 px, the white
 // level taken on that box's border; the one nearer the ellipse's centre is the centre spot.
@@ -61,10 +63,12 @@ namespace imagepro {
 struct SpotRun {
   int row = 0, x0 = 0, x1 = 0;  // crop coordinates, inclusive
   int parent = 0;               // union-find over runs
+  bool at_limit = false;        // reaches the edge of the spot search's ellipse
 };
 
 struct SpotComponent {
   int area = 0, x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // crop coordinates, inclusive box
+  bool at_limit = false;  // reaches the edge of the search: something from beyond the disk
 };
 
 // Where one sub-pixel rim point was found: on image row (or column) `line`, the inside of

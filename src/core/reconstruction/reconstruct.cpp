@@ -7,13 +7,28 @@
 #include "core/ellipse/direct_fit.h"
 #include "core/reconstruction/pose.h"
 #include "core/reconstruction/refine.h"
+#include "core/reconstruction/rim_fit.h"
 #include "core/reconstruction/undistort.h"
 
 namespace imagepro {
 
 ReconstructionConfig reconstructionConfig(const Settings& settings) {
-  return {settings.camera(), settings.target, settings.pipeline.rethreshold,
-          settings.pipeline.reconstruction};
+  ReconstructionConfig config{settings.camera(), settings.target, settings.pipeline.rethreshold,
+                              settings.pipeline.reconstruction};
+  ReconstructionOptions& o = config.options;
+  if (o.distortion_correction && !o.exact_undistortion && !config.camera.distortion.isZero() &&
+      taylorInverseErrorPx(config.camera) > kTaylorInverseLimitPx) {
+    o.exact_undistortion = true;
+    config.exact_for_wide_lens = true;
+  }
+  return config;
+}
+
+LensInverse lensInverse(const ReconstructionConfig& config) {
+  const ReconstructionOptions& o = config.options;
+  if (!o.distortion_correction || config.camera.distortion.isZero()) return LensInverse::None;
+  if (config.exact_for_wide_lens) return LensInverse::ExactWideLens;
+  return o.exact_undistortion ? LensInverse::Exact : LensInverse::Taylor;
 }
 
 namespace {
@@ -136,6 +151,7 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
   out.candidates = PoseCandidates{};
   out.halfway_pose = false;
   out.spot_error_px = out.rim_error_px = 0.0;
+  out.rim_seen = 0.0;
   auto fail = [&](Status& step, Status s) {
     step = s;
     out.status = s;
@@ -180,16 +196,16 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
   out.centre_spot_ideal = spotsIdeal[0];
   out.offset_spot_ideal = spotsIdeal[1];
 
-  // The direct fit (thesis 2.6.2) without its quality measures: the detection stage has
-  // already judged the rim.
-  ConicMoments moments;
-  moments.add(std::span<const Eigen::Vector2d>(out.contour_ideal));
-  EllipseFit fit;
-  const Status fitStatus = fitEllipse(moments, fit);
+  // The direct fit (thesis 2.6.2) of the points on the rim, those off it (an occluder's
+  // edge, a crossing under glare) left out of the contour (rim_fit.h); the detection stage
+  // has already judged the rim.
+  RimFit rim;
+  const Status fitStatus = fitRim(out.contour_ideal, out.contour, config.options.robust_rim_fit, ws.rim, rim);
   if (!ok(fitStatus)) return fail(out.steps.fit, fitStatus);
   out.steps.fit = Status::Ok;
-  out.conic = fit.conic;
-  out.ellipse = fit.ellipse;
+  out.conic = rim.fit.conic;
+  out.ellipse = rim.fit.ellipse;
+  out.rim_seen = rim.seen;
 
   Status poseStatus = poseFromEllipse(config.camera, config.target, out.conic, out.centre_spot_ideal,
                                       out.offset_spot_ideal, out.pose, config.options.centre_spot_normal,

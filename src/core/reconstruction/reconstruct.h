@@ -16,6 +16,8 @@
 #include "core/ellipse/ellipse.h"
 #include "core/reconstruction/features.h"
 #include "core/reconstruction/pose.h"
+#include "core/reconstruction/rim_fit.h"
+#include "core/reconstruction/undistort.h"
 #include "core/settings/settings.h"
 
 namespace imagepro {
@@ -50,6 +52,9 @@ struct ReconstructionResult {
   double spot_error_px = 0.0;  // the larger of spotReprojectionErrors of the pose
   double rim_error_px = 0.0;   // RMS distance of the contour points from the pose's rim
   double blur_spread_px = 0.0;  // the rim's blur along its widest direction (features.h); 0 unknown
+  // The share of the rim seen (rim_fit.h): 1 for a whole rim, less where an occluder hides
+  // part of it; 0 before the fit. `contour` holds only the points on the rim.
+  double rim_seen = 0.0;
   // The spots could not tell the two circles apart and their normals lie within twice
   // ambiguity_min_deg: `pose` is the one halfway between the candidates.
   bool halfway_pose = false;
@@ -57,16 +62,23 @@ struct ReconstructionResult {
 
 struct ReconstructionWorkspace {
   FeatureWorkspace features;
+  RimFitWorkspace rim;
 };
 
-// What the reconstruction needs from the settings.
+// What the reconstruction needs from the settings. A camera whose lens the Taylor inverse
+// errs on by more than kTaylorInverseLimitPx inside the frame (undistort.h) gets the exact
+// inverse: options.exact_undistortion is set, and exact_for_wide_lens says it was not asked.
 struct ReconstructionConfig {
   CameraModel camera;
   TargetGeometry target;
   ThresholdOptions rethreshold;
   ReconstructionOptions options;
+  bool exact_for_wide_lens = false;
 };
 ReconstructionConfig reconstructionConfig(const Settings& settings);
+
+// Which inverse of the lens model corrects the features under `config`.
+LensInverse lensInverse(const ReconstructionConfig& config);
 
 // `detected` is the rim's ellipse found by the detection stage in the image as seen;
 // `frameThreshold` the threshold that stage used (for re-threshold None). A frame whose

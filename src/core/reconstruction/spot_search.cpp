@@ -291,10 +291,12 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
         const std::uint8_t* row = grey.ptr<std::uint8_t>(y) + crop.x;
         count = x0 <= x1 ? scan.runs(row, x0, x1, spotLevel, -crop.x, bounds.data()) : 0;
       }
+      const int first = count > 0 ? std::max(ceilToInt(xl), crop.x) - crop.x : 0;
+      const int last = count > 0 ? std::min(floorToInt(xr), crop.x + crop.width - 1) - crop.x : 0;
       for (int i = 0; i < count; ++i) {
         const int start = bounds[2 * i], x = bounds[2 * i + 1] + 1;
         const int id = static_cast<int>(runs.size());
-        runs.push_back({r, start, x - 1, id});
+        runs.push_back({r, start, x - 1, id, start <= first || x - 1 >= last});
         for (std::size_t p = prevBegin; p < prevEnd; ++p) {
           if (runs[p].x0 <= x && runs[p].x1 >= start - 1) {
             const int a = findRoot(runs, static_cast<int>(p)), b = findRoot(runs, id);
@@ -317,9 +319,10 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
     const SpotRun& run = runs[i];
     if (componentOf[root] < 0) {
       componentOf[root] = static_cast<int>(components.size());
-      components.push_back({0, run.x0, run.row, run.x1, run.row});
+      components.push_back({0, run.x0, run.row, run.x1, run.row, false});
     }
     SpotComponent& c = components[componentOf[root]];
+    c.at_limit = c.at_limit || run.at_limit;
     c.area += run.x1 - run.x0 + 1;
     c.x0 = std::min(c.x0, run.x0);
     c.x1 = std::max(c.x1, run.x1);
@@ -333,7 +336,7 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
   std::array<SpotComponent, 2> kept{};
   int accepted = 0;
   for (const SpotComponent& c : components) {
-    if (c.area < minArea || c.area > maxArea) continue;
+    if (c.area < minArea || c.area > maxArea || c.at_limit) continue;
     if (accepted < 2) kept[accepted] = c;
     ++accepted;
   }
@@ -344,7 +347,7 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
     if (!spotBoxesByModel(grey, detected, target, bright, ws.dark_mean, boxes)) return Status::SpotsNotFound;
     for (int k = 0; k < 2; ++k)
       kept[k] = {boxes[k].area(), boxes[k].x - crop.x, boxes[k].y - crop.y, boxes[k].x + boxes[k].width - 1 - crop.x,
-                 boxes[k].y + boxes[k].height - 1 - crop.y};
+                 boxes[k].y + boxes[k].height - 1 - crop.y, false};
     accepted = 2;
   }
   if (accepted > 2) return Status::AmbiguousSpots;

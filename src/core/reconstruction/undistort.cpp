@@ -111,4 +111,46 @@ UndistortionError measureTaylorUndistortionError(const CameraModel& cam) {
   return e;
 }
 
+namespace {
+
+bool sameLens(const CameraModel& a, const CameraModel& b) {
+  return a.width == b.width && a.height == b.height && a.principal_point_px == b.principal_point_px &&
+         a.distortion.k1 == b.distortion.k1 && a.distortion.k2 == b.distortion.k2 &&
+         a.distortion.p1 == b.distortion.p1 && a.distortion.p2 == b.distortion.p2;
+}
+
+double taylorErrorAt(const CameraModel& cam, int u, int v) {
+  const Eigen::Vector2d x(u, v);
+  return (undistortTaylor(cam, x) - undistortExact(cam, x)).norm();
+}
+
+}  // namespace
+
+const char* lensInverseName(LensInverse inverse) {
+  switch (inverse) {
+    case LensInverse::None: return "none";
+    case LensInverse::Taylor: return "taylor";
+    case LensInverse::Exact: return "exact";
+    case LensInverse::ExactWideLens: return "exact-wide-lens";
+  }
+  return "none";
+}
+
+double taylorInverseErrorPx(const CameraModel& cam) {
+  thread_local CameraModel last;
+  thread_local double error = -1.0;
+  if (error >= 0.0 && sameLens(cam, last)) return error;
+  double most = 0.0;
+  if (!cam.distortion.isZero() && cam.width > 0 && cam.height > 0) {
+    const int w = cam.width - 1, h = cam.height - 1;
+    for (int u = 0; u <= w; ++u) most = std::max({most, taylorErrorAt(cam, u, 0), taylorErrorAt(cam, u, h)});
+    for (int v = 0; v <= h; ++v) most = std::max({most, taylorErrorAt(cam, 0, v), taylorErrorAt(cam, w, v)});
+    for (int v = 16; v < h; v += 16)
+      for (int u = 16; u < w; u += 16) most = std::max(most, taylorErrorAt(cam, u, v));
+  }
+  last = cam;
+  error = most;
+  return error;
+}
+
 }  // namespace imagepro

@@ -11,6 +11,7 @@
 //    invertible.
 // f and its partial derivatives are those of core/common/lens_model.h.
 #include <Eigen/Core>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -39,5 +40,24 @@ struct UndistortionError {
   std::vector<double> max_px_by_radius;
 };
 UndistortionError measureTaylorUndistortionError(const CameraModel& cam);
+
+// Which inverse corrected a frame's features: none (no distortion, or correction off), the
+// thesis's Taylor inverse, the exact one as the settings ask, or the exact one because the
+// Taylor inverse errs by more than kTaylorInverseLimitPx inside this camera's frame.
+enum class LensInverse : std::uint8_t { None, Taylor, Exact, ExactWideLens };
+// "none", "taylor", "exact", "exact-wide-lens": the name the outputs give.
+const char* lensInverseName(LensInverse inverse);
+
+// A wide lens (issue 35): where the Taylor inverse errs by more than this inside the frame,
+// the reconstruction uses the exact inverse without being asked (reconstruct.h). The sub-pixel
+// rim's points scatter by about as much, so a larger error of the correction would show in the
+// pose. The thesis camera's Taylor inverse errs by 0.03 px over 640x480; a 1280x720 webcam
+// lens with 40 px of barrel distortion at the corners by 0.09 px.
+inline constexpr double kTaylorInverseLimitPx = 0.05;
+
+// The Taylor inverse's largest error inside the camera's frame (px), on every pixel of the
+// frame's border and a 16 px grid within (the error grows towards the border). Kept per
+// thread for the last camera asked, so asking every frame costs a comparison.
+double taylorInverseErrorPx(const CameraModel& cam);
 
 }  // namespace imagepro

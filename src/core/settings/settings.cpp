@@ -181,6 +181,7 @@ void visitSettings(Visitor& v, Settings& s) {
       v.field("centre_spot_normal", p.reconstruction.centre_spot_normal);
       v.field("weighted_spot_centres", p.reconstruction.weighted_spot_centres);
       v.field("rim_edge_model", p.reconstruction.rim_edge_model);
+      v.field("robust_rim_fit", p.reconstruction.robust_rim_fit);
       v.field("refine_pose", p.reconstruction.refine_pose);
       v.field("crop_margin_px", p.reconstruction.crop_margin_px, 0, 1000);
       v.field("max_spot_error_px", p.reconstruction.max_spot_error_px, 0.0, kInf);

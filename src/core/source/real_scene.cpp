@@ -22,6 +22,7 @@ struct StillDraw {
   Pose pose;
   TargetLook look;
   SceneConditions conditions;
+  RigDraw rig;
 };
 
 Pose randomStillPose(const Settings& s, SceneRandom& random) {
@@ -41,7 +42,8 @@ Pose randomStillPose(const Settings& s, SceneRandom& random) {
   return poseAlongRay(cam, Eigen::Vector2d(cam.u0(), cam.v0()), distance, tilt, azimuth, inplane);
 }
 
-StillDraw drawStill(const Settings& s, std::size_t photos, std::uint64_t seed, std::int64_t index) {
+StillDraw drawStill(const Settings& s, const RigEffects& rig, std::size_t photos, std::uint64_t seed,
+                    std::int64_t index) {
   const std::uint64_t base = mixSeed(seed, static_cast<std::uint64_t>(index));
   StillDraw d;
   SceneRandom scene(mixSeed(base, 0));
@@ -56,6 +58,14 @@ StillDraw drawStill(const Settings& s, std::size_t photos, std::uint64_t seed, s
   d.pose = randomStillPose(s, pose);
   SceneRandom conditions(mixSeed(base, 2));
   d.conditions = randomStillConditions(conditions);
+  if (rig.any()) {
+    SceneRandom effects(mixSeed(base, 3));
+    d.rig = drawRigEffects(rig, s.target, d.look.card_size_mm, effects);
+    if (d.rig.dim) {
+      d.look.white = d.rig.dim_white;
+      d.look.black = d.rig.dim_black;
+    }
+  }
   return d;
 }
 
@@ -135,11 +145,11 @@ void composeTarget(const cv::Mat& background, const CameraModel& camera, const T
       scene);
 }
 
-RealScenes::RealScenes(const Settings& settings, std::vector<std::string> photos)
-    : settings_(settings), photos_(std::move(photos)) {}
+RealScenes::RealScenes(const Settings& settings, std::vector<std::string> photos, RigEffects rig)
+    : settings_(settings), photos_(std::move(photos)), rig_(rig) {}
 
 Pose RealScenes::stillPose(std::uint64_t seed, std::int64_t index) const {
-  return drawStill(settings_, photos_.size(), seed, index).pose;
+  return drawStill(settings_, rig_, photos_.size(), seed, index).pose;
 }
 
 bool RealScenes::background(const std::string& path, double zoom, double fx, double fy, cv::Mat& out,
@@ -164,16 +174,19 @@ bool RealScenes::still(std::uint64_t seed, std::int64_t index, bool with_target,
     error = "no photographs to draw the scenes over";
     return false;
   }
-  const StillDraw d = drawStill(settings_, photos_.size(), seed, index);
+  const StillDraw d = drawStill(settings_, rig_, photos_.size(), seed, index);
   cv::Mat photo;
   if (!background(photos_[d.photo], d.zoom, d.fx, d.fy, photo, error)) return false;
   cv::Mat scene;
   if (with_target) {
     paint(painter, photo, d.pose, d.look, scene);
+    paintRigEffects(d.rig, settings_.camera(), d.pose, scene);
     out.truth = d.pose;
+    out.rig = d.rig;
   } else {
     photo.convertTo(scene, CV_32F);
     out.truth.reset();
+    out.rig = {};
   }
   applyConditions(scene, d.conditions, out.image);
   out.background = photos_[d.photo];

@@ -13,7 +13,8 @@
 // 0-60 deg from its line of sight, turned at random about its normal, its card wholly
 // inside the frame, paper white 170-235 and card black 10-40, with the still
 // conditions of randomStillConditions(). Everything is drawn from (seed, index), so a
-// set is reproducible. A negative is the same draw without the target.
+// set is reproducible. A negative is the same draw without the target. A webcam set
+// (issue 35) adds rig effects (rig_effects.h) from a stream of their own.
 #include <opencv2/core.hpp>
 
 #include <cstdint>
@@ -25,6 +26,7 @@
 #include "core/common/geometry.h"
 #include "core/settings/settings.h"
 #include "core/source/background_photos.h"
+#include "core/source/rig_effects.h"
 #include "core/source/scene_conditions.h"
 
 namespace imagepro {
@@ -42,6 +44,7 @@ struct RealSceneFrame {
   std::string background;     // the photograph's path
   SceneConditions conditions;
   TargetLook look;
+  RigDraw rig;  // the occluder, glare and dim light drawn (none outside a webcam set)
 };
 
 // The pose that puts the disk centre `distance_mm` along the ray through the ideal
@@ -79,7 +82,9 @@ using ScenePainter = std::function<void(const cv::Mat& background, const Pose& p
 // Still frames and negatives over the photographs `photos`.
 class RealScenes {
  public:
-  RealScenes(const Settings& settings, std::vector<std::string> photos);
+  // `rig` adds occluders, glare and dim light to a share of the stills (rig_effects.h); the
+  // draws of everything else stay as they are without it, so a seed shows the same scenes.
+  RealScenes(const Settings& settings, std::vector<std::string> photos, RigEffects rig = {});
 
   // Still `index` of the set `seed`; `with_target` false gives its negative. False with
   // `error` when there is no photograph or the one drawn cannot be read. `painter` draws
@@ -96,6 +101,7 @@ class RealScenes {
 
   const std::vector<std::string>& photos() const { return photos_; }
   const Settings& settings() const { return settings_; }
+  const RigEffects& rigEffects() const { return rig_; }
   // The photograph `path` cut to the camera's size as (zoom, fx, fy) say.
   bool background(const std::string& path, double zoom, double fx, double fy, cv::Mat& out,
                   std::string& error) const;
@@ -107,6 +113,7 @@ class RealScenes {
  private:
   Settings settings_;
   std::vector<std::string> photos_;
+  RigEffects rig_;
   PhotoCache cache_;
 };
 

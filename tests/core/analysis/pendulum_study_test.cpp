@@ -183,7 +183,7 @@ TEST(PendulumStudy, InterlacedFrames) {
   params.frames = 100;
   PendulumStudyResult r = runVirtualPendulum(s, params, {});
   EXPECT_EQ(r.status, Status::TargetLost) << r.error;
-  EXPECT_LT(r.analysis.valid_frames, 40);
+  EXPECT_LT(r.analysis.valid_frames, 50);
 
   s.virtual_scene.pendulum.amplitude_deg = 6.0;
   params.frames = 250;

@@ -210,10 +210,21 @@ TEST_F(TargetScene, OccludedTargetFoundByConsensusFit) {
   EXPECT_EQ(detect(img), Status::NoTarget);
 }
 
-TEST_F(TargetScene, MoreThanAQuarterOccludedIsNotATarget) {
+// More than a quarter hidden: the path's consensus fit gives up, and the rim is taken from
+// the spots (both whole) as long as over 60 % of it is seen; with less it is no target.
+TEST_F(TargetScene, MoreThanAQuarterOccludedIsFoundFromTheSpotsUpToTwoFifths) {
   const Pose pose{0, 25, 0, 0, 0, 700};
+  const Ellipse truth = test::diskImage(camera, target, pose);
   cv::Mat img = render(pose);
-  occludeCap(img, test::diskImage(camera, target, pose), 0.35, scene.black_level);
+  occludeCap(img, truth, 0.35, scene.black_level);
+  ASSERT_EQ(detect(img), Status::Ok);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_TRUE(found[0].robust);
+  expectEllipseOfPose(found[0], pose, 1.0);
+  EXPECT_GE(found[0].traced, 0.6);
+  EXPECT_LT(found[0].traced, 0.7);
+  img = render(pose);
+  occludeCap(img, truth, 0.42, scene.black_level);
   EXPECT_EQ(detect(img), Status::NoTarget);
 }
 
@@ -298,6 +309,41 @@ TEST_F(TargetScene, BennettFindsTheTarget) {
   EXPECT_TRUE(found[0].spots_found);
   EXPECT_GT(found[0].bennett_score, options.bennett_min_score);
   expectEllipseOfPose(found[0], pose);
+}
+
+// Tape as bright as the paper across the whole frame, over a bright scene: the disk, the tape
+// and the scene are one white region, and the rim is only arcs of the scene's outline, whose
+// box spans the frame. The spots stay whole, and the rim is found from them.
+TEST_F(TargetScene, RimWithoutAPathOfItsOwnIsFoundFromTheSpots) {
+  scene.background_level = 200;
+  for (const Pose& pose : {Pose{0, 0, 0, 0, 0, 1000}, Pose{25, -15, 30, 40, -20, 900}}) {
+    SCOPED_TRACE(pose.tz_mm);
+    cv::Mat img = render(pose);
+    const Ellipse truth = test::diskImage(camera, target, pose);
+    const int y = static_cast<int>(std::lround(truth.cy + 0.6 * truth.b));
+    cv::rectangle(img, cv::Rect(0, y - 4, img.cols, 8), cv::Scalar(scene.white_level), cv::FILLED);
+    ASSERT_EQ(detect(img), Status::Ok);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_TRUE(found[0].robust);
+    EXPECT_TRUE(found[0].spots_found);
+    expectEllipseOfPose(found[0], pose, 1.0);
+    EXPECT_GE(found[0].traced, 0.75);
+    // Off, no target with its spots is found.
+    options.robust_fit = false;
+    const Status off = detect(img);
+    EXPECT_TRUE(!ok(off) || found.empty() || !found[0].spots_found) << statusName(off);
+    options.robust_fit = true;
+  }
+}
+
+// Two dark dots shaped and spaced like the spots, on paper without a rim round them: no
+// target, whichever way the pair is tried.
+TEST_F(TargetScene, TwoDotsWithoutARimAreNoTarget) {
+  cv::Mat img(camera.height, camera.width, CV_8UC1, cv::Scalar(scene.white_level));
+  cv::circle(img, {300, 240}, 5, cv::Scalar(scene.black_level), cv::FILLED, cv::LINE_AA);
+  cv::circle(img, {321, 240}, 5, cv::Scalar(scene.black_level), cv::FILLED, cv::LINE_AA);
+  const Status st = detect(img);
+  EXPECT_TRUE(st == Status::NoTarget || (ok(st) && !found.empty() && !found[0].spots_found)) << statusName(st);
 }
 
 TEST(TargetDetection, EmptyAndTinyInputs) {

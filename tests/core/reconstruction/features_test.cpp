@@ -393,13 +393,15 @@ TEST_F(FeatureTest, SpotsNotFoundAmbiguousAndSpecksIgnored) {
 // The spot search's rule done plainly, for reference: the 8-connected components (OpenCV's
 // labelling) of the pixels at most the middle of the class means, inside 0.85 of the
 // detected ellipse row by row (ceil of the left crossing to floor of the right), whose area
-// is 1/5 to 5 times a spot's expected area.
+// is 1/5 to 5 times a spot's expected area and which do not reach the first or last pixel
+// of a row's span (what comes in from beyond the disk).
 int FeatureTest::spotSizedComponents(const Ellipse& e) const {
   const double t = e.angle_deg * M_PI / 180.0, c = std::cos(t), s = std::sin(t);
   const double ia2 = 1.0 / (0.85 * 0.85 * e.a * e.a), ib2 = 1.0 / (0.85 * 0.85 * e.b * e.b);
   const double P = c * c * ia2 + s * s * ib2, Q = c * s * (ia2 - ib2), R = s * s * ia2 + c * c * ib2;
   const double level = std::clamp(std::floor(0.5 * (ws.dark_mean + ws.bright_mean)), 0.0, 255.0);
   cv::Mat dark(crop.size(), CV_8UC1, cv::Scalar(0));
+  std::vector<cv::Point> span_ends;
   for (int r = 0; r < crop.height; ++r) {
     const double dy = crop.y + r - e.cy, disc = Q * Q * dy * dy - P * (R * dy * dy - 1.0);
     if (disc < 0.0) continue;
@@ -407,14 +409,21 @@ int FeatureTest::spotSizedComponents(const Ellipse& e) const {
     const int x1 = std::min(static_cast<int>(std::floor(e.cx + (-Q * dy + std::sqrt(disc)) / P)), crop.x + crop.width - 1);
     for (int x = x0; x <= x1; ++x)
       if (image.at<uchar>(crop.y + r, x) <= level) dark.at<uchar>(r, x - crop.x) = 255;
+    if (x0 <= x1) {
+      span_ends.emplace_back(x0 - crop.x, r);
+      span_ends.emplace_back(x1 - crop.x, r);
+    }
   }
   cv::Mat labels, stats, centroids;
   const int n = cv::connectedComponentsWithStats(dark, labels, stats, centroids, 8);
+  std::vector<bool> at_limit(static_cast<std::size_t>(n), false);
+  for (const cv::Point& p : span_ends)
+    if (dark.at<uchar>(p) != 0) at_limit[static_cast<std::size_t>(labels.at<int>(p))] = true;
   const double expected = M_PI * std::pow(target.spot_radius_mm / target.radius_mm, 2) * e.a * e.b;
   int sized = 0;
   for (int i = 1; i < n; ++i) {
     const int area = stats.at<int>(i, cv::CC_STAT_AREA);
-    sized += area >= std::max(2.0, 0.2 * expected) && area <= 5.0 * expected + 4.0;
+    sized += area >= std::max(2.0, 0.2 * expected) && area <= 5.0 * expected + 4.0 && !at_limit[i];
   }
   return sized;
 }

@@ -8,6 +8,7 @@
 
 #include "core/ellipse/direct_fit.h"
 #include "core/pipeline/engine.h"
+#include "core/source/rig_effects.h"
 #include "core/source/virtual_renderer.h"
 #include "status_print.h"
 #include "test_scenes.h"
@@ -311,14 +312,25 @@ TEST_F(ReconstructTest, NamedErrorsAndTheStepThatGaveThem) {
              cv::Scalar(20), cv::FILLED);
   EXPECT_EQ(reconstructTarget(settings, three, e, 128, ws, result), Status::AmbiguousSpots);
 
-  // Spots where the geometry does not put them: the offset spot drawn at the rim's edge.
+  // Spots where the geometry does not put them: the offset spot drawn at the rim's edge. It
+  // reaches beyond the spot search's ellipse, as an occluder from beyond the disk does, and
+  // is no spot; the other one alone is not found by the target's geometry either.
   cv::Mat moved;
   TargetGeometry far = settings.target;
   far.spot_offset_mm = 40;
   renderTarget(settings.camera(), far, settings.virtual_scene, truth, moved);
   EXPECT_EQ(reconstructTarget(settings, moved, e, 128, ws, result), Status::SpotsNotFound);
+  EXPECT_EQ(result.steps.spots, Status::SpotsNotFound);
+  EXPECT_EQ(result.steps.fit, Status::Stopped);
+  // Drawn a little further in (0.64 of the radius from the centre), it is found, and the
+  // pose says the spots do not sit where the target's geometry puts them, or that the pose
+  // does not fit them.
+  far.spot_offset_mm = 32;
+  renderTarget(settings.camera(), far, settings.virtual_scene, truth, moved);
+  const Status wrong = reconstructTarget(settings, moved, e, 128, ws, result);
+  EXPECT_TRUE(wrong == Status::SpotsNotFound || wrong == Status::PoseInconsistent) << statusName(wrong);
   EXPECT_EQ(result.steps.fit, Status::Ok);
-  EXPECT_EQ(result.steps.pose, Status::SpotsNotFound);
+  EXPECT_EQ(result.steps.pose, wrong);
 }
 
 // The whole chain as the pipeline runs it: the target found by the detection stage in grey
@@ -351,6 +363,51 @@ TEST_F(ReconstructTest, RoundTripThroughTheDetectionStage) {
   EXPECT_GT(rot.size(), 50u);
   EXPECT_LT(quantile(rot, 0.5), 0.1);
   EXPECT_LT(quantile(pos, 0.5), 0.05);
+}
+
+// Tape across the rim, clear of the spots (rig_effects.h), under blur and noise: the robust rim
+// fit leaves the tape's edge out, the pose is as good as an unoccluded one's, and the share of
+// the rim seen says a part was hidden. The plain fit of every point is worse.
+TEST(OccludedRim, TapeAcrossTheRimIsLeftOutOfThePose) {
+  Settings s;
+  s.camera().distortion = kThesisCameraDistortion;
+  const Pose pose{20.0, -10.0, 35.0, 30.0, -20.0, 650.0};
+  RigDraw tape;
+  tape.occluder = {true, Eigen::Vector2d(-120.0, 36.0), Eigen::Vector2d(120.0, 28.0), 14.0, 45};
+  cv::Mat grey, image;
+  renderTarget(s.camera(), s.target, s.virtual_scene, pose, grey, 1);
+  cv::Mat scene;
+  grey.convertTo(scene, CV_32F);
+  paintRigEffects(tape, s.camera(), pose, scene);
+  SceneConditions c;
+  c.blur_sigma_px = 0.8;
+  c.noise_sigma = 2.0;
+  c.noise_seed = 4;
+  applyConditions(scene, c, image);
+
+  auto run = [&](bool robust, FrameResult& result) {
+    s.pipeline.reconstruction.robust_rim_fit = robust;
+    Engine engine(s);
+    Frame frame;
+    frame.image = image;
+    engine.process(frame, result);
+  };
+  FrameResult robust, plain;
+  run(true, robust);
+  ASSERT_EQ(robust.status, Status::Ok) << statusName(robust.status);
+  ASSERT_TRUE(robust.pose);
+  const double error = rotationErrorDeg(*robust.pose, pose);
+  EXPECT_LT(error, 0.5);
+  EXPECT_LT(positionErrorPercent(pose, *robust.pose), 0.3);
+  EXPECT_GT(robust.rim_seen, 0.7);
+  EXPECT_LT(robust.rim_seen, 0.97);
+  EXPECT_EQ(robust.lens_inverse, lensInverse(reconstructionConfig(s)));
+
+  run(false, plain);
+  if (plain.pose) {
+    EXPECT_GE(rotationErrorDeg(*plain.pose, pose), error);
+    EXPECT_GE(plain.rim_seen, robust.rim_seen);  // it kept every point, the tape's edge too
+  }
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 #include "core/reconstruction/undistort.h"
+#include "core/reconstruction/reconstruct.h"
 
 #include <gtest/gtest.h>
 
@@ -181,6 +182,66 @@ TEST(Undistort, TaylorErrorByRadiusAndTheLargestDisplacement) {
   EXPECT_DOUBLE_EQ(*std::max_element(e.max_px_by_radius.begin(), e.max_px_by_radius.end()), e.max_px);
   EXPECT_DOUBLE_EQ(e.max_px, worst);
   EXPECT_LT(e.max_px_by_radius[2], e.max_px_by_radius[40]);  // the error grows outwards
+}
+
+}  // namespace
+}  // namespace imagepro
+
+namespace imagepro {
+namespace {
+
+CameraModel webcamCamera() {
+  CameraModel cam;
+  cam.width = 1280;
+  cam.height = 720;
+  cam.pixel_size_mm = {0.003, 0.003};
+  cam.image_plane_distance_mm = 3.0;
+  cam.principal_point_px = {652.4, 371.6};
+  cam.distortion = {-7.5e-8, -1.0e-14, 1.2e-6, -8.0e-7};
+  return cam;
+}
+
+// The border-and-grid estimate of the Taylor inverse's largest error is the whole image's
+// (measured pixel by pixel), for the thesis camera and a wide webcam lens alike.
+TEST(WideLens, TaylorErrorEstimateIsTheWholeImagesLargest) {
+  for (const CameraModel& cam : {thesisCamera(), webcamCamera()}) {
+    const double estimate = taylorInverseErrorPx(cam);
+    const double whole = measureTaylorUndistortionError(cam).max_px;
+    EXPECT_LE(estimate, whole + 1e-12);
+    EXPECT_GE(estimate, 0.98 * whole) << cam.width;
+    EXPECT_EQ(taylorInverseErrorPx(cam), estimate);  // asked again: the same
+  }
+  EXPECT_EQ(taylorInverseErrorPx(CameraModel{}), 0.0);
+}
+
+// A lens the Taylor inverse errs on by more than kTaylorInverseLimitPx gets the exact inverse
+// without being asked, and says so; the thesis camera keeps the thesis's inverse.
+TEST(WideLens, TheExactInverseIsUsedWithoutBeingAsked) {
+  Settings s;
+  s.camera() = webcamCamera();
+  ASSERT_GT(taylorInverseErrorPx(s.camera()), kTaylorInverseLimitPx);
+  ReconstructionConfig c = reconstructionConfig(s);
+  EXPECT_TRUE(c.options.exact_undistortion);
+  EXPECT_TRUE(c.exact_for_wide_lens);
+  EXPECT_EQ(lensInverse(c), LensInverse::ExactWideLens);
+  EXPECT_STREQ(lensInverseName(lensInverse(c)), "exact-wide-lens");
+
+  s.pipeline.reconstruction.exact_undistortion = true;  // asked: not "without being asked"
+  c = reconstructionConfig(s);
+  EXPECT_FALSE(c.exact_for_wide_lens);
+  EXPECT_EQ(lensInverse(c), LensInverse::Exact);
+
+  s.pipeline.reconstruction.exact_undistortion = false;
+  s.camera() = thesisCamera();
+  c = reconstructionConfig(s);
+  EXPECT_EQ(c.options.exact_undistortion, taylorInverseErrorPx(s.camera()) > kTaylorInverseLimitPx);
+  EXPECT_EQ(lensInverse(c), c.exact_for_wide_lens ? LensInverse::ExactWideLens : LensInverse::Taylor);
+
+  s.camera().distortion = {};
+  EXPECT_EQ(lensInverse(reconstructionConfig(s)), LensInverse::None);
+  s.camera() = webcamCamera();
+  s.pipeline.reconstruction.distortion_correction = false;
+  EXPECT_EQ(lensInverse(reconstructionConfig(s)), LensInverse::None);
 }
 
 }  // namespace
