@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <optional>
 
 #include "core/ellipse/fast_atan2.h"
 #include "core/ellipse/pixel_passes.h"
@@ -391,6 +392,13 @@ constexpr int kMaxSpotPairs = 64;
 // Other dark paths of the spots' size within this many times the spots' distance of their
 // midpoint count against a pair: inside the disk, clear of the rim.
 constexpr double kSpotPairRoundness = 1.2;
+// Neighbouring directions' nearest edges on one rim differ by at most this share (a circle
+// seen at 60 deg, 64 directions: under 6 %) and a pixel; at least this share of the
+// directions must be so before the seeds are fitted.
+constexpr double kSeedStep = 0.15;
+constexpr double kSmoothSeeds = 0.5;
+// Paths whose box is at most this wide are found by their box's left edge (targetsFromSpots).
+constexpr int kNarrowPathPx = 64;
 // The seeds' consensus: with the robust pass's least share of them on the rim (0.75), a
 // clean six-point sample comes in 60 tries but for once in ten thousand.
 constexpr int kSeedIterations = 60;
@@ -401,6 +409,10 @@ constexpr double kRimBeyondSpots = 0.7;
 // With both spots where the target has them, a rim traced over this share (or the robust
 // pass's, if less) is the target's: tape crossing the rim at a slant hides a long arc.
 constexpr double kSpotsMinTraced = 0.6;
+// A rim traced this far from a pair of spots is taken without trying the other pairs.
+constexpr double kSpotsSureTraced = 0.9;
+// The spots' size within this factor of r0 / R times the rim's (findSpots allows 2.5).
+constexpr double kSpotsSizeMatch = 1.6;
 
 // The pairs of dark paths that may be a target's spots (spotPair, neither a found target's),
 // into ws.pairs, the likeliest first: fewest other dark paths of their size round them (the
@@ -450,6 +462,15 @@ void listSpotPairs(const TargetGeometry& g, EllipseWorkspace& ws, const std::vec
 void targetsFromSpots(const EllipseOptions& o, const TargetGeometry& g, const Paths& paths, cv::Size image,
                       EllipseWorkspace& ws, std::vector<TargetDetection>& out) {
   listSpotPairs(g, ws, out);
+  if (ws.pairs.empty()) return;
+  // Paths by the left edge of their box, so that a pair visits only those near it; the few
+  // wider than kNarrowPathPx (the scene's long outlines) are visited always.
+  ws.narrow_by_x.clear();
+  ws.wide.clear();
+  for (std::size_t j = 0; j < ws.paths.size(); ++j)
+    (ws.paths[j].bbox.width <= kNarrowPathPx ? ws.narrow_by_x : ws.wide).push_back(j);
+  std::sort(ws.narrow_by_x.begin(), ws.narrow_by_x.end(),
+            [&](std::size_t i, std::size_t j) { return ws.paths[i].bbox.x < ws.paths[j].bbox.x; });
   std::array<std::size_t, 2> spots;
   std::array<EdgePixel, kSeedArcs> nearest;
   std::array<double, kSeedArcs> nearest_d2;
@@ -457,6 +478,7 @@ void targetsFromSpots(const EllipseOptions& o, const TargetGeometry& g, const Pa
   EllipseOptions seeding = o;
   seeding.robust_iterations = std::min(o.robust_iterations, kSeedIterations);
   const std::size_t tries = std::min(ws.pairs.size(), static_cast<std::size_t>(kMaxSpotPairs));
+  std::optional<TargetDetection> best;
   for (std::size_t t = 0; t < tries; ++t) {
     const std::size_t a = ws.pairs[t].a, b = ws.pairs[t].b;
     if (claimed(a, out) || claimed(b, out)) continue;
@@ -475,8 +497,8 @@ void targetsFromSpots(const EllipseOptions& o, const TargetGeometry& g, const Pa
     ws.gathered.clear();
     ws.gathered_counts.assign(ws.paths.size(), 0);
     nearest_d2.fill(std::numeric_limits<double>::infinity());
-    for (std::size_t j = 0; j < ws.paths.size(); ++j) {
-      if (j == a || j == b || (ws.paths[j].bbox & box).area() == 0) continue;
+    auto gather = [&](std::size_t j) {
+      if (j == a || j == b || (ws.paths[j].bbox & box).area() == 0) return;
       for (const EdgePixel& e : paths.path(j)) {
         const double dx = e.x - mx, dy = e.y - my, d2 = dx * dx + dy * dy;
         if (d2 > reach * reach || e.gx * dx + e.gy * dy >= 0.0) continue;
@@ -489,11 +511,25 @@ void targetsFromSpots(const EllipseOptions& o, const TargetGeometry& g, const Pa
           nearest[arc] = e;
         }
       }
-    }
+    };
+    for (const std::size_t j : ws.wide) gather(j);
+    for (auto j = std::lower_bound(ws.narrow_by_x.begin(), ws.narrow_by_x.end(), box.x - kNarrowPathPx,
+                                   [&](std::size_t i, int x) { return ws.paths[i].bbox.x < x; });
+         j != ws.narrow_by_x.end() && ws.paths[*j].bbox.x <= box.x + box.width; ++j)
+      gather(*j);
     ws.seeds.clear();
     for (int k = 0; k < kSeedArcs; ++k)
       if (std::isfinite(nearest_d2[k])) ws.seeds.push_back(nearest[k]);
     if (ws.seeds.size() < static_cast<std::size_t>(min_traced * kSeedArcs)) continue;
+    // A rim round the pair is a smooth outline: the nearest edge moves little from one
+    // direction to the next, while a photograph's texture scatters it. Without that, no
+    // consensus fit (the costly part) is tried.
+    int smooth = 0;
+    for (int k = 0; k < kSeedArcs; ++k) {
+      const double r0 = std::sqrt(nearest_d2[k]), r1 = std::sqrt(nearest_d2[(k + 1) % kSeedArcs]);
+      smooth += std::isfinite(r0) && std::isfinite(r1) && std::abs(r0 - r1) <= kSeedStep * std::min(r0, r1) + 1.0;
+    }
+    if (smooth < static_cast<int>(kSmoothSeeds * kSeedArcs)) continue;
     EllipseFit fit;
     EllipseTrace trace;
     if (!ok(consensusFit(seeding, ws.seeds, ws, fit))) continue;
@@ -515,6 +551,12 @@ void targetsFromSpots(const EllipseOptions& o, const TargetGeometry& g, const Pa
     if (!plausibleTargetView(o, fit.ellipse, image)) continue;
     if (!findSpots(o, g, fit.ellipse, kNoPath, ws, spots)) continue;
     if (!((spots[0] == a && spots[1] == b) || (spots[0] == b && spots[1] == a))) continue;
+    // The spots' size must be the target's for this rim, closer than findSpots asks: a
+    // photograph's blobs with arcs round them are of any size.
+    const double expected = g.spot_radius_mm / g.radius_mm * std::sqrt(fit.ellipse.a * fit.ellipse.b);
+    if (std::max(p.rms_radius, q.rms_radius) > kSpotsSizeMatch * expected ||
+        std::min(p.rms_radius, q.rms_radius) < expected / kSpotsSizeMatch)
+      continue;
     PathSummary s;
     s.fit = fit;
     s.trace = trace;
@@ -529,8 +571,16 @@ void targetsFromSpots(const EllipseOptions& o, const TargetGeometry& g, const Pa
     d.spot_paths = spots;
     d.spots_found = true;
     d.robust = true;
-    out.push_back(d);
+    if (o.report_all_targets) {
+      out.push_back(d);
+      continue;
+    }
+    // One target wanted: the one whose rim is traced most (a photograph's texture may hold
+    // pairs with arcs round them, seldom traced as far); one traced almost whole ends the search.
+    if (!best || d.traced > best->traced) best = d;
+    if (d.traced >= kSpotsSureTraced) break;
   }
+  if (best) out.push_back(*best);
 }
 
 }  // namespace
@@ -629,7 +679,7 @@ Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Path
       out.push_back(d);
     }
   }
-  if (out.empty() && o.robust_fit && o.method == EllipseMethod::DirectFit)
+  if (out.empty() && o.robust_fit && o.targets_from_spots && o.method == EllipseMethod::DirectFit)
     targetsFromSpots(o, g, paths, image, ws, out);
   if (out.size() == 1) return Status::Ok;
   // Several targets: in path order, whichever pass found them.

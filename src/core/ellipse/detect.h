@@ -122,6 +122,7 @@ struct EllipseWorkspace {
   std::vector<std::size_t> gathered_counts;  // per path: how many of them it gave
   std::vector<EdgePixel> seeds;              // the nearest of them in each direction
   std::vector<std::size_t> by_x;             // dark paths in order of their centroid's x
+  std::vector<std::size_t> narrow_by_x, wide;  // all paths: narrow ones by their box's left edge
   std::vector<SpotPairCandidate> pairs;      // pairs of them that may be spots, likeliest first
   std::vector<std::size_t> dark;   // closed paths around dark regions: spot candidates
   std::vector<std::size_t> spots;

@@ -405,6 +405,18 @@ double sampsonDistance(const EllipseFit& fit, double x, double y) {
   return fit.scale * f / g;
 }
 
+double squaredSampsonDistance(const EllipseFit& fit, double x, double y) {
+  const Conic& c = fit.normalised;
+  const double is = 1.0 / fit.scale;
+  const double u = (x - fit.origin.x()) * is, v = (y - fit.origin.y()) * is;
+  const double f = c(0) * u * u + c(1) * u * v + c(2) * v * v + c(3) * u + c(4) * v + c(5);
+  const double gu = 2.0 * c(0) * u + c(1) * v + c(3);
+  const double gv = c(1) * u + 2.0 * c(2) * v + c(4);
+  const double g2 = gu * gu + gv * gv;
+  if (!(g2 > 0.0)) return std::numeric_limits<double>::infinity();
+  return fit.scale * fit.scale * f * f / g2;
+}
+
 namespace {
 template <class Points, class Get>
 double meanSampson(const EllipseFit& fit, const Points& points, Get get) {

@@ -80,6 +80,8 @@ Status fitEllipseDirect(std::span<const Eigen::Vector2d> points, EllipseFit& fit
 
 // The signed Sampson distance of one point (pixels, negative inside the ellipse).
 double sampsonDistance(const EllipseFit& fit, double x, double y);
+// Its square, without the root (px^2; infinite where the conic's gradient vanishes).
+double squaredSampsonDistance(const EllipseFit& fit, double x, double y);
 
 // Whether points lie within `limit_px` (Sampson distance) of a fit's ellipse: the test
 // std::abs(sampsonDistance(fit, x, y)) <= limit_px, without its division and root, for

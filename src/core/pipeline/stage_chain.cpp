@@ -49,7 +49,7 @@ void keepDisplayFeatures(const ReconstructionResult& r, FrameResult& out) {
 // binary image in chain.binary, as far as the application level asks. Stage times add
 // up over the passes of one frame.
 void findTargets(const Settings& settings, const cv::Mat& grey, cv::Rect inside, TargetsToReconstruct which,
-                 ConnectivityWorkspace& connectivity_ws, StageChain& chain, FrameResult& out) {
+                 ConnectivityWorkspace& connectivity_ws, StageChain& chain, FrameResult& out, bool from_spots = true) {
   const PipelineOptions& o = settings.pipeline;
   out.targets.clear();
   out.detected_region = {};
@@ -86,6 +86,9 @@ void findTargets(const Settings& settings, const cv::Mat& grey, cv::Rect inside,
   out.reached = ApplicationLevel::Ellipse;
   EllipseOptions ellipse = o.ellipse;
   if (which == TargetsToReconstruct::Every) ellipse.report_all_targets = true;
+  // A reduced pass leaves the rim from the spots (detect.h) to the full-size passes, where the
+  // spots are four times the pixels: at half size it costs as much and finds little more.
+  ellipse.targets_from_spots = ellipse.targets_from_spots && from_spots;
   out.status = detectTarget(ellipse, settings.target, chain.paths, grey.size(), chain.ellipse_ws, chain.detections);
   for (const TargetDetection& d : chain.detections) out.targets.push_back(summary(d));
   if (ok(out.status) && chain.detections.empty()) out.status = Status::NoTarget;
@@ -428,7 +431,7 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
     out.times[Stage::Threshold] += microsecondsSince(start);
     chain.reported_factor = pass.factor;
     if (pass.factor > 1)
-      findTargets(settings, chain.reduced, passRegion, which, chain.reduced_connectivity_ws, chain, out);
+      findTargets(settings, chain.reduced, passRegion, which, chain.reduced_connectivity_ws, chain, out, false);
     else
       findTargets(settings, grey, passRegion, which, chain.connectivity_ws, chain, out);
     if (pass.factor > 1) enlargeDetections(pass.factor, inside.tl(), chain, out);

@@ -40,9 +40,10 @@
 // Spots: the dark 8-connected components (grey at most the middle of the crop's two class
 // means, so that a threshold close to one class cannot swell, shrink or merge them) inside
 // 0.85 of the detected ellipse with an area
-// between 1/5 and 5 times a spot's expected area (pi (r0/R)^2 a b), not reaching the edge of
-// that ellipse (an occluder across the rim, a clamp or tape, comes in from beyond the disk,
-// while the spots lie within 0.62 of it); exactly two are
+// between 1/5 and 5 times a spot's expected area (pi (r0/R)^2 a b), those reaching the edge
+// of that ellipse only when there are exactly two with them (an occluder across the rim, a
+// clamp or tape, comes in from beyond the disk, while the spots lie within 0.62 of it, a
+// small, steeply seen target's reaching that edge at most); exactly two are
 // expected (SpotsNotFound, AmbiguousSpots otherwise). Each one's position is the centroid
 // weighted by darkness (local white level minus grey) over its box grown by 3 px, the white
 // level taken on that box's border; the one nearer the ellipse's centre is the centre spot.

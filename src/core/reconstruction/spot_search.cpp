@@ -31,6 +31,13 @@ constexpr double kSpotRimClearancePx = 2.5;  // spot centroids ignore pixels thi
 // (measured on real-scene frames: 0.5-0.85 do alike, 1.3 loses a third of the gain).
 constexpr double kSpotWindowScale = 0.7;
 constexpr int kSpotWindowMaxPx = 128;  // wider boxes (spots over ~50 px) keep the plain centroid
+// A saturated pixel is glare; so is one brighter than the paper round the spot (its box's
+// border) by this share of the paper-to-card contrast, and at least this many grey levels
+// (over three times the noise of a webcam's frame). The crop's bright class mean is no
+// measure of the paper: on a small target it takes in the blurred rim.
+constexpr int kSaturatedGrey = 250;
+constexpr double kGlareAboveLocal = 0.15;
+constexpr double kGlareAboveLocalGrey = 20.0;
 
 // The darkness-weighted centroid under a Gaussian window that follows it (a matched-filter
 // centre): each pass weighs a pixel by (white - g) exp(-|p - u|^2 / 2 s^2) about the last
@@ -333,12 +340,23 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
   const double expected =
       M_PI * std::pow(target.spot_radius_mm / target.radius_mm, 2) * detected.a * detected.b;
   const double minArea = std::max(2.0, 0.2 * expected), maxArea = 5.0 * expected + 4.0;
-  std::array<SpotComponent, 2> kept{};
-  int accepted = 0;
+  // Those reaching the search's edge are taken only when, with them, there are exactly two:
+  // a spot of a small, steeply seen target can reach it too.
+  std::array<SpotComponent, 2> kept{}, withEdge{};
+  int accepted = 0, touching = 0;
   for (const SpotComponent& c : components) {
-    if (c.area < minArea || c.area > maxArea || c.at_limit) continue;
+    if (c.area < minArea || c.area > maxArea) continue;
+    if (accepted + touching < 2) withEdge[accepted + touching] = c;
+    if (c.at_limit) {
+      ++touching;
+      continue;
+    }
     if (accepted < 2) kept[accepted] = c;
     ++accepted;
+  }
+  if (accepted < 2 && accepted + touching == 2) {
+    kept = withEdge;
+    accepted = 2;
   }
   spots.candidates = accepted;
   if (accepted < 2) {
@@ -373,19 +391,32 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
     return Eigen::Vector2d(crop.x + 0.5 * (cmp.x0 + cmp.x1), crop.y + 0.5 * (cmp.y0 + cmp.y1));
   };
   const Eigen::Vector2d midway = 0.5 * (boxCentre(kept[0]) + boxCentre(kept[1]));
+  // A glare (saturated, or far above the paper) is neither paper nor spot: it is left out of
+  // the white level and of the centroid, whose weights white - g it would turn negative,
+  // pushing the spot away from it.
   std::array<Eigen::Vector2d, 2> centroid;
   for (int k = 0; k < 2; ++k) {
     const cv::Rect box = grownBox(kept[k]);
     const Eigen::Vector2d towardsOther = boxCentre(kept[1 - k]) - boxCentre(kept[k]);
-    // Whether a pixel counts: inside the rim's clearance, and on this spot's side.
-    auto counts = [&](int x, int y) {
+    // Whether a pixel counts: inside the rim's clearance, on this spot's side, and (once the
+    // paper's level is known) no glare.
+    auto within = [&](int x, int y) {
       return rim.rho2(x, y) < rho2Max &&
              (!boxesOverlap || (Eigen::Vector2d(x, y) - midway).dot(towardsOther) < 0.0);
     };
+    int brightest = 0;  // the box's brightest pixel
+    for (int y = box.y; y < box.y + box.height; ++y) {
+      const std::uint8_t* row = grey.ptr<std::uint8_t>(y);
+      brightest = std::max<int>(brightest, *std::max_element(row + box.x, row + box.x + box.width));
+    }
+    int glareCut = kSaturatedGrey;
+    bool glare = brightest > glareCut;
+    auto counts = [&](int x, int y) { return within(x, y) && (!glare || grey.at<std::uint8_t>(y, x) <= glareCut); };
     // The ellipse is convex: with the box's corners inside, every pixel is.
     const int bx1 = box.x + box.width - 1, by1 = box.y + box.height - 1;
-    const bool boxInside = !boxesOverlap && rim.rho2(box.x, box.y) < rho2Max && rim.rho2(bx1, box.y) < rho2Max &&
-                           rim.rho2(box.x, by1) < rho2Max && rim.rho2(bx1, by1) < rho2Max;
+    const bool cornersInside = !boxesOverlap && rim.rho2(box.x, box.y) < rho2Max && rim.rho2(bx1, box.y) < rho2Max &&
+                               rim.rho2(box.x, by1) < rho2Max && rim.rho2(bx1, by1) < rho2Max;
+    bool boxInside = cornersInside && !glare;
     // The local white level: the box's border pixels inside the rim.
     double borderSum = 0.0;
     int borderCount = 0;
@@ -417,6 +448,12 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
       }
     }
     const double white = borderCount > 0 ? borderSum / borderCount : bright;
+    // Glare's halo, short of saturation, also lies above the paper round the spot: left out
+    // from a fraction of the paper-to-card contrast above it (noise seldom reaches that far).
+    glareCut = std::min(kSaturatedGrey,
+                        floorToInt(white + std::max(kGlareAboveLocalGrey, kGlareAboveLocal * (white - ws.dark_mean))));
+    glare = brightest > glareCut;
+    boxInside = cornersInside && !glare;
     // Weights white - g: summed as integer moments of g (sum g, sum x g, sum y g over n
     // pixels), combined with the white level at the end.
     std::int64_t n = 0, sumX = 0, sumY = 0, sumG = 0, sumXG = 0, sumYG = 0;

@@ -132,6 +132,9 @@ struct EllipseOptions {
   bool require_target_spots = false;
   // Report every target found instead of failing with AmbiguousTarget.
   bool report_all_targets = false;
+  // With robust_fit, a rim without a path of its own is looked for from a pair of spots
+  // (detect.h). Not a setting: the stage chain leaves it to the full-size passes.
+  bool targets_from_spots = true;
 };
 
 struct ReconstructionOptions {

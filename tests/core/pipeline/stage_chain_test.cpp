@@ -377,11 +377,9 @@ TEST(StageChainCoarse, AChainStoppingBeforeThePoseSearchesTheFullSize) {
 
 // A target whose card shows as a ring one pixel wide: at half size the ring fades into
 // the white around it and the disk with it, so the reduced passes miss; the full-size
-// passes find it. (Without robust_fit: from its spots the ellipse stage would find the rim's
-// arcs at half size too, detect.h.)
+// passes find it (the rim from the spots, detect.h, is left to the full-size passes).
 TEST(StageChainCoarse, AMissAtTheReducedSizeFallsThroughToTheFullSize) {
   Settings s;
-  s.pipeline.ellipse.robust_fit = false;
   s.virtual_scene.card_size_mm = 102.0;
   s.virtual_scene.background_level = 245;
   const Pose truth{0, 10, 30, 0, 0, 800};

@@ -394,7 +394,7 @@ TEST_F(FeatureTest, SpotsNotFoundAmbiguousAndSpecksIgnored) {
 // labelling) of the pixels at most the middle of the class means, inside 0.85 of the
 // detected ellipse row by row (ceil of the left crossing to floor of the right), whose area
 // is 1/5 to 5 times a spot's expected area and which do not reach the first or last pixel
-// of a row's span (what comes in from beyond the disk).
+// of a row's span (what comes in from beyond the disk), unless with those there are two.
 int FeatureTest::spotSizedComponents(const Ellipse& e) const {
   const double t = e.angle_deg * M_PI / 180.0, c = std::cos(t), s = std::sin(t);
   const double ia2 = 1.0 / (0.85 * 0.85 * e.a * e.a), ib2 = 1.0 / (0.85 * 0.85 * e.b * e.b);
@@ -420,12 +420,13 @@ int FeatureTest::spotSizedComponents(const Ellipse& e) const {
   for (const cv::Point& p : span_ends)
     if (dark.at<uchar>(p) != 0) at_limit[static_cast<std::size_t>(labels.at<int>(p))] = true;
   const double expected = M_PI * std::pow(target.spot_radius_mm / target.radius_mm, 2) * e.a * e.b;
-  int sized = 0;
+  int sized = 0, touching = 0;
   for (int i = 1; i < n; ++i) {
     const int area = stats.at<int>(i, cv::CC_STAT_AREA);
-    sized += area >= std::max(2.0, 0.2 * expected) && area <= 5.0 * expected + 4.0 && !at_limit[i];
+    if (area < std::max(2.0, 0.2 * expected) || area > 5.0 * expected + 4.0) continue;
+    (at_limit[i] ? touching : sized) += 1;
   }
-  return sized;
+  return sized < 2 && sized + touching == 2 ? 2 : sized;
 }
 
 // The spot search's row scan runs 32 pixels per step with AVX2 and 16 with SSE2, after a
