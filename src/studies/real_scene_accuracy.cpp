@@ -245,6 +245,16 @@ std::vector<Row> poseRows(PoseTally DetectorTally::*set, const char* of) {
   };
 }
 
+// The stills' rows, with the false detections on the negatives after the wrong poses.
+std::vector<Row> stillRows() {
+  std::vector<Row> rows = poseRows(&DetectorTally::stills, "the stills");
+  rows.insert(rows.begin() + 3,
+              Row{"false detections on the negatives", "0",
+                  [](const DetectorTally& d) { return format("%d of %d", d.false_detections, d.negatives); },
+                  [](const DetectorTally& d) { return d.false_detections == 0; }});
+  return rows;
+}
+
 std::string missedLine(const std::vector<std::string>& missed) {
   if (missed.empty()) return "The target meets every goal here.\n\n";
   std::string out = "**Goals not met by the target:** ";
@@ -286,11 +296,7 @@ std::string realSceneSection(const Settings& settings, const RealSceneStudyOptio
 
   std::vector<std::string> missed;
   md += "### Stills and negatives\n\n";
-  std::vector<Row> rows = poseRows(&DetectorTally::stills, "the stills");
-  rows.insert(rows.begin() + 3,
-              Row{"false detections on the negatives", "0",
-                  [](const DetectorTally& d) { return format("%d of %d", d.false_detections, d.negatives); },
-                  [](const DetectorTally& d) { return d.false_detections == 0; }});
+  std::vector<Row> rows = stillRows();
   md += table(rows, study, missed) + "\n";
   md += missedLine(missed);
 
@@ -337,13 +343,9 @@ std::string webcamSection(const Settings& settings, const std::string& config, c
                 .c_str()
           : "");
   std::vector<std::string> missed;
-  std::vector<Row> rows = poseRows(&DetectorTally::stills, "the stills");
+  std::vector<Row> rows = stillRows();
   rows[1].goal = ">= 95 %";
   rows[1].met = [](const DetectorTally& d) { return d.stills.correct >= 0.95 * d.stills.frames; };
-  rows.insert(rows.begin() + 3,
-              Row{"false detections on the negatives", "0",
-                  [](const DetectorTally& d) { return format("%d of %d", d.false_detections, d.negatives); },
-                  [](const DetectorTally& d) { return d.false_detections == 0; }});
   md += table(rows, study, missed) + "\n";
   md += missedLine(missed);
   md += "### The target's stills by what the rig did to them\n\n"

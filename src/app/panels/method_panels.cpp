@@ -135,7 +135,9 @@ QWidget* ellipsePanel(SettingsBinder& binder) {
                        "ellipseRobustFit",
                        QObject::tr("Direct fit: when no ellipse holds the target's spots, a path that may hold them but "
                                    "fails the fit (an occluder's edges in its contour, thesis fig. 2.28) is refitted on "
-                                   "the inliers of the six-point fit whose ellipse it traces most"));
+                                   "the inliers of the six-point fit whose ellipse it traces most; with no target still, "
+                                   "the rim's arcs round a pair of spots are fitted (an occluder joining the disk to "
+                                   "the scene)"));
   auto* robust_iterations = named(binder.intSpin([e](Settings& s) -> auto& { return e(s).robust_iterations; }),
                                   "ellipseRobustIterations",
                                   QObject::tr("Consensus refit: at most this many six-point fits (fewer once 99 % sure "
@@ -206,7 +208,7 @@ QWidget* reconstructionPanel(SettingsBinder& binder) {
   form->addRow(named(binder.check(QObject::tr("Rim edge model"), [r](Settings& s) -> auto& { return r(s).rim_edge_model; }),
                      "rimEdgeModel", QObject::tr("Sub-pixel rim: edge levels fitted over the whole rim and the blur's shrink of a curved edge undone, instead of each point between its own plateaus")));
   form->addRow(named(binder.check(QObject::tr("Robust rim fit"), [r](Settings& s) -> auto& { return r(s).robust_rim_fit; }),
-                     "robustRimFit", QObject::tr("Leave contour points off the rim (an occluder's edge, glare) out of the rim's fit and the self-check")));
+                     "robustRimFit", QObject::tr("Sub-pixel rim: leave contour points off the rim (an occluder's edge, glare) out of the rim's fit and the self-check")));
   form->addRow(named(binder.check(QObject::tr("Refine the pose"), [r](Settings& s) -> auto& { return r(s).refine_pose; }),
                      "refinePose", QObject::tr("A few Levenberg-Marquardt steps of the pose against the rim's edge points and the two spots")));
   form->addRow(QObject::tr("Crop margin"), named(binder.intSpin([r](Settings& s) -> auto& { return r(s).crop_margin_px; }, QStringLiteral(" px")),

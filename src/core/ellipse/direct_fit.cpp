@@ -393,26 +393,30 @@ Status fitEllipse(const ConicMoments& mom, EllipseFit& fit) {
   return Status::Ok;
 }
 
-double sampsonDistance(const EllipseFit& fit, double x, double y) {
+namespace {
+// The conic's value f and its gradient's squared length at (x, y), in the fit's normalised frame.
+struct ConicAt {
+  double f, g2;
+};
+ConicAt conicAt(const EllipseFit& fit, double x, double y) {
   const Conic& c = fit.normalised;
   const double is = 1.0 / fit.scale;
   const double u = (x - fit.origin.x()) * is, v = (y - fit.origin.y()) * is;
-  const double f = c(0) * u * u + c(1) * u * v + c(2) * v * v + c(3) * u + c(4) * v + c(5);
   const double gu = 2.0 * c(0) * u + c(1) * v + c(3);
   const double gv = c(1) * u + 2.0 * c(2) * v + c(4);
-  const double g = std::sqrt(gu * gu + gv * gv);
+  return {c(0) * u * u + c(1) * u * v + c(2) * v * v + c(3) * u + c(4) * v + c(5), gu * gu + gv * gv};
+}
+}  // namespace
+
+double sampsonDistance(const EllipseFit& fit, double x, double y) {
+  const auto [f, g2] = conicAt(fit, x, y);
+  const double g = std::sqrt(g2);
   if (!(g > 0.0)) return f < 0.0 ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
   return fit.scale * f / g;
 }
 
 double squaredSampsonDistance(const EllipseFit& fit, double x, double y) {
-  const Conic& c = fit.normalised;
-  const double is = 1.0 / fit.scale;
-  const double u = (x - fit.origin.x()) * is, v = (y - fit.origin.y()) * is;
-  const double f = c(0) * u * u + c(1) * u * v + c(2) * v * v + c(3) * u + c(4) * v + c(5);
-  const double gu = 2.0 * c(0) * u + c(1) * v + c(3);
-  const double gv = c(1) * u + 2.0 * c(2) * v + c(4);
-  const double g2 = gu * gu + gv * gv;
+  const auto [f, g2] = conicAt(fit, x, y);
   if (!(g2 > 0.0)) return std::numeric_limits<double>::infinity();
   return fit.scale * fit.scale * f * f / g2;
 }

@@ -199,8 +199,10 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
   // The direct fit (thesis 2.6.2) of the points on the rim, those off it (an occluder's
   // edge, a crossing under glare) left out of the contour (rim_fit.h); the detection stage
   // has already judged the rim.
+  // The thesis's pixel contour modes keep its plain fit, as they keep its pose choice.
+  const bool robust = config.options.robust_rim_fit && config.options.contour_mode == ContourMode::SubPixel;
   RimFit rim;
-  const Status fitStatus = fitRim(out.contour_ideal, out.contour, config.options.robust_rim_fit, ws.rim, rim);
+  const Status fitStatus = fitRim(out.contour_ideal, out.contour, robust, ws.rim, rim);
   if (!ok(fitStatus)) return fail(out.steps.fit, fitStatus);
   out.steps.fit = Status::Ok;
   out.conic = rim.fit.conic;

@@ -152,8 +152,9 @@ struct ReconstructionOptions {
   // the whole rim and the blur's shrink of a curved edge undone (rim_edge.h); off, each
   // point keeps the level between its own plateaus (docs/reconstruction.md, Rim edge model).
   bool rim_edge_model = true;
-  // Leave the contour points off the rim (an occluder's edge, a crossing under glare) out of
-  // the rim's fit, the self-check and the refinement (rim_fit.h); off, every point is fitted.
+  // Sub-pixel contour mode: leave the contour points off the rim (an occluder's edge, a
+  // crossing under glare) out of the rim's fit, the self-check and the refinement
+  // (rim_fit.h); off, and in the thesis's pixel modes, every point is fitted.
   bool robust_rim_fit = true;
   int crop_margin_px = 4;
   // Sub-pixel contour mode only (the pixel modes keep the thesis's rule, unchecked).
