@@ -86,8 +86,7 @@ void findTargets(const Settings& settings, const cv::Mat& grey, cv::Rect inside,
   out.reached = ApplicationLevel::Ellipse;
   EllipseOptions ellipse = o.ellipse;
   if (which == TargetsToReconstruct::Every) ellipse.report_all_targets = true;
-  // A reduced pass leaves the rim from the spots (detect.h) to the full-size passes, where the
-  // spots are four times the pixels: at half size it costs as much and finds little more.
+  // A pass may leave the rim from the spots (detect.h) to the passes after it (runStageChain).
   ellipse.targets_from_spots = ellipse.targets_from_spots && from_spots;
   out.status = detectTarget(ellipse, settings.target, chain.paths, grey.size(), chain.ellipse_ws, chain.detections);
   for (const TargetDetection& d : chain.detections) out.targets.push_back(summary(d));
@@ -402,6 +401,13 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
   if (mode != Binarization::Global && o.binarization.window_px == 0 && (inside != whole || expected == nullptr))
     passes[count++] = {true, 1, kNarrowWindowPx};
 
+  // The rim from the spots (detect.h) only on the full-size local passes (a global pass's
+  // miss is mostly light that the local pass after it mends, at a fraction of the cost), and
+  // not on a whole frame searched right after a pose: as the narrow pass, it is for acquiring
+  // a target, and a tracked stream's one miss would pay for it (docs/benchmarks.md).
+  const auto fromSpots = [&](const Pass& pass) {
+    return (pass.local || mode == Binarization::Global) && (inside != whole || expected == nullptr);
+  };
   bool haveMiss = false;  // a missed pass kept in the spare buffers
   PassOutcome bestMiss;
   for (int i = 0; i < count; ++i) {
@@ -433,7 +439,7 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
     if (pass.factor > 1)
       findTargets(settings, chain.reduced, passRegion, which, chain.reduced_connectivity_ws, chain, out, false);
     else
-      findTargets(settings, grey, passRegion, which, chain.connectivity_ws, chain, out);
+      findTargets(settings, grey, passRegion, which, chain.connectivity_ws, chain, out, fromSpots(pass));
     if (pass.factor > 1) enlargeDetections(pass.factor, inside.tl(), chain, out);
     if (out.status == Status::AmbiguousTarget && which == TargetsToReconstruct::Best &&
         reached(o.level, ApplicationLevel::Reconstruction))
