@@ -32,8 +32,9 @@
 // last try with robust_fit (issue 35): from a pair of dark paths shaped like the spots, the
 // rim's edge pixels are gathered from every path around them, gradient pointing inwards,
 // and fitted by consensus; an occluder that joins the disk to the scene beyond the card
-// leaves the rim no path of its own, only arcs of others, while the spots stay whole.
-// Without any target, the thesis's rule picks the best ellipse (lowest error, or highest Bennett score),
+// leaves the rim no path of its own, only arcs of others, while the spots stay whole
+// (targets_from_spots: the stage chain leaves it to some passes). Without any target, the
+// thesis's rule picks the best ellipse (lowest error, or highest Bennett score),
 // preferring ellipses that hold any dark path over plain disks, unless
 // require_target_spots; its runners-up stay in the workspace.
 #include <opencv2/core.hpp>
