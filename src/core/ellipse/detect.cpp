@@ -23,6 +23,8 @@ constexpr std::size_t kMinSpotPixels = 4;
 // A spot's path (the white pixels around it) has an RMS radius within this factor of
 // the spot's expected radius r0 / R * sqrt(a b).
 constexpr double kSpotSizeFactor = 2.5;
+// Dark paths of spot size a target's disk may hold, its spots among them (findSpots).
+constexpr std::size_t kMaxDiskBlobs = 4;
 // The consensus fit scores its candidates on at most this many pixels of the path.
 constexpr std::size_t kConsensusScorePoints = 128;
 
@@ -136,8 +138,11 @@ Eigen::Vector2d unitFrame(const Ellipse& e, double x, double y) {
 }
 
 // Dark closed paths of spot size inside `e` (other than `self`) into ws.spots; true when
-// there are exactly two and they sit where the target's spots sit. spots[0] is then the
-// centre spot.
+// exactly one pair of them sits where the target's spots sit (the centre spot within the
+// tolerance of the centre, the offset spot at its distance from it). spots[0] is then the
+// centre spot. Other dark paths of spot size may lie on the disk (an occluder's edge broken
+// up by a local threshold), but at most kMaxDiskBlobs of them: a photograph's texture inside
+// a false ellipse holds many, and some pair of those would sit right by chance.
 bool findSpots(const EllipseOptions& o, const TargetGeometry& g, const Ellipse& e,
                std::size_t self, EllipseWorkspace& ws, std::array<std::size_t, 2>& spots) {
   ws.spots.clear();
@@ -149,21 +154,24 @@ bool findSpots(const EllipseOptions& o, const TargetGeometry& g, const Ellipse& 
     if (s.rms_radius < expected / kSpotSizeFactor || s.rms_radius > expected * kSpotSizeFactor) continue;
     if (unitFrame(e, s.cx, s.cy).norm() >= 1.0) continue;
     ws.spots.push_back(j);
-    if (ws.spots.size() > 2) return false;
+    if (ws.spots.size() > kMaxDiskBlobs) return false;
   }
-  if (ws.spots.size() != 2) return false;
-  Eigen::Vector2d q0 = unitFrame(e, ws.paths[ws.spots[0]].cx, ws.paths[ws.spots[0]].cy);
-  Eigen::Vector2d q1 = unitFrame(e, ws.paths[ws.spots[1]].cx, ws.paths[ws.spots[1]].cy);
-  std::size_t centre = ws.spots[0], offset = ws.spots[1];
-  if (q1.norm() < q0.norm()) {
-    std::swap(q0, q1);
-    std::swap(centre, offset);
+  if (ws.spots.size() < 2) return false;
+  const double tol = o.target_spot_tolerance, offset = g.spot_offset_mm / g.radius_mm;
+  auto at = [&](std::size_t j) { return unitFrame(e, ws.paths[j].cx, ws.paths[j].cy); };
+  int pairs = 0;
+  for (const std::size_t c : ws.spots) {
+    const Eigen::Vector2d qc = at(c);
+    if (qc.norm() > tol) continue;
+    for (const std::size_t f : ws.spots) {
+      const Eigen::Vector2d qf = at(f);
+      // The offset spot lies farther out than the centre spot.
+      if (f == c || qf.norm() < qc.norm() || std::abs((qf - qc).norm() - offset) > tol) continue;
+      if (++pairs > 1) return false;
+      spots = {c, f};
+    }
   }
-  const double tol = o.target_spot_tolerance;
-  if (q0.norm() > tol) return false;
-  if (std::abs((q1 - q0).norm() - g.spot_offset_mm / g.radius_mm) > tol) return false;
-  spots = {centre, offset};
-  return true;
+  return pairs == 1;
 }
 
 // Is dark path j one of the spots of a target found already?

@@ -27,10 +27,9 @@ struct EllipseForm {
     Q = c * s * (ia2 - ib2);
     R = s * s * ia2 + c * c * ib2;
   }
-  double rho2(double x, double y) const {
-    const double dx = x - cx, dy = y - cy;
-    return P * dx * dx + 2.0 * Q * dx * dy + R * dy * dy;
-  }
+  double rho2(double x, double y) const { return norm2(x - cx, y - cy); }
+  // The squared length of (dx, dy) measured in the ellipse's radii.
+  double norm2(double dx, double dy) const { return P * dx * dx + 2.0 * Q * dx * dy + R * dy * dy; }
   // Radius of curvature of the level curve through (x, y): |grad|^3 / |t^T H |grad|^2 t|.
   double curvatureRadius(double x, double y) const {
     const double dx = x - cx, dy = y - cy;

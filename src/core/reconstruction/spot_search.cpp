@@ -38,6 +38,11 @@ constexpr int kSpotWindowMaxPx = 128;  // wider boxes (spots over ~50 px) keep t
 constexpr int kSaturatedGrey = 250;
 constexpr double kGlareAboveLocal = 0.15;
 constexpr double kGlareAboveLocalGrey = 20.0;
+// More than two dark components on the disk (an occluder's end, a shadow's edge): the one
+// pair that sits where the target's spots sit is taken, within this share of the rim's
+// radius (as the ellipse stage's default spot tolerance), of areas within kPairAreaRatio.
+constexpr double kSpotPlaceTolerance = 0.2;
+constexpr double kPairAreaRatio = 3.0;
 
 // The darkness-weighted centroid under a Gaussian window that follows it (a matched-filter
 // centre): each pass weighs a pixel by (white - g) exp(-|p - u|^2 / 2 s^2) about the last
@@ -235,23 +240,10 @@ int findRoot(std::vector<SpotRun>& runs, int i) {
   return i;
 }
 
-}  // namespace
-
-Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& detected,
-                    const TargetGeometry& target, bool weightedCentres, FeatureWorkspace& ws,
-                    SpotFeatures& spots) {
-  spots.candidates = 0;
-  // The crop was checked against the frame rethresholdCrop saw; reading another, smaller
-  // frame through it would run past its rows.
-  IMAGEPRO_EXPECTS(grey.empty() || (crop & cv::Rect(0, 0, grey.cols, grey.rows)) == crop,
-                   "the crop lies inside the frame rethresholdCrop was given");
-  if (grey.empty() || grey.type() != CV_8UC1 || ws.threshold < 0 || ws.crop != crop) return Status::EmptyFrame;
-  const EllipseForm inner(detected, kSpotSearchScale);
-  // Spots are cut at the middle of the crop's two class means rather than at the threshold
-  // itself: a minimum-error threshold near one class's level (as under blur) would swell
-  // or shrink them, and merge two spots seen close together.
-  const double bright = ws.bright_mean;
-  const auto spotLevel = static_cast<std::uint8_t>(std::clamp(floorToInt(0.5 * (ws.dark_mean + ws.bright_mean)), 0, 255));
+// The dark components inside the search ellipse `inner` of the crop, cut at `level`, into
+// ws.components (ws.runs and ws.componentOf are its scratch).
+void darkComponents(const cv::Mat& grey, const cv::Rect& crop, const EllipseForm& inner, std::uint8_t spotLevel,
+                    FeatureWorkspace& ws) {
   std::vector<SpotRun>& runs = ws.runs;
   runs.clear();
   std::vector<int>& bounds = ws.runBounds;
@@ -336,16 +328,39 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
     c.y0 = std::min(c.y0, run.row);
     c.y1 = std::max(c.y1, run.row);
   }
-  // Of spot size: between 1/5 and 5 times the expected area.
-  const double expected =
-      M_PI * std::pow(target.spot_radius_mm / target.radius_mm, 2) * detected.a * detected.b;
+}
+
+// Do dark components c (the centre spot) and f (the offset spot), crop coordinates from
+// `origin`, sit where the target's spots sit on `rim`? Within kSpotPlaceTolerance of the
+// rim's radius, and of areas within kPairAreaRatio.
+bool spotsInPlace(const SpotComponent& c, const SpotComponent& f, cv::Point origin, const EllipseForm& rim,
+                  const TargetGeometry& target) {
+  if (std::max(c.area, f.area) > kPairAreaRatio * std::min(c.area, f.area)) return false;
+  auto centre = [&](const SpotComponent& k) {
+    return Eigen::Vector2d(origin.x + 0.5 * (k.x0 + k.x1), origin.y + 0.5 * (k.y0 + k.y1));
+  };
+  const Eigen::Vector2d pc = centre(c), pf = centre(f), d = pf - pc;
+  const double rc = std::sqrt(rim.rho2(pc.x(), pc.y()));
+  return rc <= kSpotPlaceTolerance && std::sqrt(rim.rho2(pf.x(), pf.y())) >= rc &&
+         std::abs(std::sqrt(rim.norm2(d.x(), d.y())) - target.spot_offset_mm / target.radius_mm) <=
+             kSpotPlaceTolerance;
+}
+
+std::uint8_t levelAt(double grey) { return static_cast<std::uint8_t>(std::clamp(floorToInt(grey), 0, 255)); }
+
+// The two spots among the dark components (crop coordinates from `origin`): of spot size,
+// between 1/5 and 5 times the expected area. Those reaching the search's edge are taken only
+// when, with them, there are exactly two: a spot of a small, steeply seen target can reach
+// it too. Of more than two inside the search, the one pair in place (spotsInPlace) is taken.
+// True with the pair in `kept`; `candidates` counts the components of spot size.
+bool chooseSpots(const std::vector<SpotComponent>& components, cv::Point origin, const Ellipse& detected,
+                 const TargetGeometry& target, double expected, std::array<SpotComponent, 2>& kept, int& candidates) {
   const double minArea = std::max(2.0, 0.2 * expected), maxArea = 5.0 * expected + 4.0;
-  // Those reaching the search's edge are taken only when, with them, there are exactly two:
-  // a spot of a small, steeply seen target can reach it too.
-  std::array<SpotComponent, 2> kept{}, withEdge{};
+  auto ofSpotSize = [&](const SpotComponent& c) { return c.area >= minArea && c.area <= maxArea; };
+  std::array<SpotComponent, 2> withEdge{};
   int accepted = 0, touching = 0;
   for (const SpotComponent& c : components) {
-    if (c.area < minArea || c.area > maxArea) continue;
+    if (!ofSpotSize(c)) continue;
     if (accepted + touching < 2) withEdge[accepted + touching] = c;
     if (c.at_limit) {
       ++touching;
@@ -354,21 +369,56 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
     if (accepted < 2) kept[accepted] = c;
     ++accepted;
   }
+  candidates = accepted;
   if (accepted < 2 && accepted + touching == 2) {
     kept = withEdge;
-    accepted = 2;
+    candidates = 2;
+    return true;
   }
-  spots.candidates = accepted;
-  if (accepted < 2) {
+  if (accepted <= 2) return accepted == 2;
+  const EllipseForm rim(detected, 1.0);
+  int pairs = 0;
+  for (const SpotComponent& c : components) {
+    if (!ofSpotSize(c) || c.at_limit) continue;
+    for (const SpotComponent& f : components) {
+      if (&f == &c || !ofSpotSize(f) || f.at_limit || !spotsInPlace(c, f, origin, rim, target)) continue;
+      if (++pairs > 1) return false;
+      kept = {c, f};
+    }
+  }
+  return pairs == 1;
+}
+
+}  // namespace
+
+Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& detected,
+                    const TargetGeometry& target, bool weightedCentres, FeatureWorkspace& ws,
+                    SpotFeatures& spots) {
+  spots.candidates = 0;
+  // The crop was checked against the frame rethresholdCrop saw; reading another, smaller
+  // frame through it would run past its rows.
+  IMAGEPRO_EXPECTS(grey.empty() || (crop & cv::Rect(0, 0, grey.cols, grey.rows)) == crop,
+                   "the crop lies inside the frame rethresholdCrop was given");
+  if (grey.empty() || grey.type() != CV_8UC1 || ws.threshold < 0 || ws.crop != crop) return Status::EmptyFrame;
+  const EllipseForm inner(detected, kSpotSearchScale);
+  // Spots are cut at the middle of the crop's two class means rather than at the threshold
+  // itself: a minimum-error threshold near one class's level (as under blur) would swell
+  // or shrink them, and merge two spots seen close together.
+  const double bright = ws.bright_mean;
+  const double expected =
+      M_PI * std::pow(target.spot_radius_mm / target.radius_mm, 2) * detected.a * detected.b;
+  std::array<SpotComponent, 2> kept{};
+  darkComponents(grey, crop, inner, levelAt(0.5 * (ws.dark_mean + ws.bright_mean)), ws);
+  const bool chosen = chooseSpots(ws.components, crop.tl(), detected, target, expected, kept, spots.candidates);
+  if (!chosen && spots.candidates > 2) return Status::AmbiguousSpots;
+  if (!chosen) {
     // Too small or faint to be cut at the mid level: where the geometry puts them.
     std::array<cv::Rect, 2> boxes;
     if (!spotBoxesByModel(grey, detected, target, bright, ws.dark_mean, boxes)) return Status::SpotsNotFound;
     for (int k = 0; k < 2; ++k)
       kept[k] = {boxes[k].area(), boxes[k].x - crop.x, boxes[k].y - crop.y, boxes[k].x + boxes[k].width - 1 - crop.x,
                  boxes[k].y + boxes[k].height - 1 - crop.y, false};
-    accepted = 2;
   }
-  if (accepted > 2) return Status::AmbiguousSpots;
 
   // Darkness-weighted centroids over each box grown by a few pixels, leaving out what lies
   // near or beyond the rim (the dark card would pull a spot seen close to it, as on a target

@@ -365,6 +365,21 @@ TEST_F(ReconstructTest, RoundTripThroughTheDetectionStage) {
   EXPECT_LT(quantile(pos, 0.5), 0.05);
 }
 
+// The target at `pose` with `draw`'s occluder and glare painted in its plane, under blur 0.8
+// px and noise 2 (noise seed `seed`).
+cv::Mat renderRigScene(const Settings& s, const Pose& pose, const RigDraw& draw, int seed) {
+  cv::Mat grey, scene, image;
+  renderTarget(s.camera(), s.target, s.virtual_scene, pose, grey, 1);
+  grey.convertTo(scene, CV_32F);
+  paintRigEffects(draw, s.camera(), pose, scene);
+  SceneConditions c;
+  c.blur_sigma_px = 0.8;
+  c.noise_sigma = 2.0;
+  c.noise_seed = seed;
+  applyConditions(scene, c, image);
+  return image;
+}
+
 // Tape across the rim, clear of the spots (rig_effects.h), under blur and noise: the robust rim
 // fit leaves the tape's edge out, the pose is as good as an unoccluded one's, and the share of
 // the rim seen says a part was hidden. The plain fit of every point is worse.
@@ -374,16 +389,7 @@ TEST(OccludedRim, TapeAcrossTheRimIsLeftOutOfThePose) {
   const Pose pose{20.0, -10.0, 35.0, 30.0, -20.0, 650.0};
   RigDraw tape;
   tape.occluder = {true, Eigen::Vector2d(-120.0, 36.0), Eigen::Vector2d(120.0, 28.0), 14.0, 45};
-  cv::Mat grey, image;
-  renderTarget(s.camera(), s.target, s.virtual_scene, pose, grey, 1);
-  cv::Mat scene;
-  grey.convertTo(scene, CV_32F);
-  paintRigEffects(tape, s.camera(), pose, scene);
-  SceneConditions c;
-  c.blur_sigma_px = 0.8;
-  c.noise_sigma = 2.0;
-  c.noise_seed = 4;
-  applyConditions(scene, c, image);
+  const cv::Mat image = renderRigScene(s, pose, tape, 4);
 
   auto run = [&](bool robust, FrameResult& result) {
     s.pipeline.reconstruction.robust_rim_fit = robust;
@@ -407,6 +413,27 @@ TEST(OccludedRim, TapeAcrossTheRimIsLeftOutOfThePose) {
   if (plain.pose) {
     EXPECT_GE(rotationErrorDeg(*plain.pose, pose), error);
     EXPECT_GE(plain.rim_seen, robust.rim_seen);  // it kept every point, the tape's edge too
+  }
+}
+
+// A dark blob of a spot's size on the paper (a clamp's jaw, tape's end) makes three dark
+// marks on the disk: the two that sit where the target's spots sit are its spots, in the
+// ellipse stage and in the spot search alike.
+TEST(OccludedRim, ADarkBlobBesideTheSpotsIsNotTakenForOne) {
+  Settings s;
+  s.camera().distortion = kThesisCameraDistortion;
+  for (const Pose& pose : {Pose{15.0, -10.0, 35.0, 30.0, -20.0, 650.0}, Pose{-30.0, 20.0, -60.0, -40.0, 30.0, 900.0}}) {
+    RigDraw blob;
+    blob.occluder = {true, Eigen::Vector2d(-16.5, 0.0), Eigen::Vector2d(-9.5, 0.0), 7.0, 20};
+    Engine engine(s);
+    Frame frame;
+    frame.image = renderRigScene(s, pose, blob, 5);
+    FrameResult result;
+    engine.process(frame, result);
+    ASSERT_EQ(result.status, Status::Ok) << statusName(result.status) << " at " << pose.tz_mm << " mm";
+    ASSERT_TRUE(result.pose);
+    EXPECT_LT(rotationErrorDeg(*result.pose, pose), 0.5);
+    EXPECT_LT(positionErrorPercent(pose, *result.pose), 0.3);
   }
 }
 
