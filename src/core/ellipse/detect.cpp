@@ -23,8 +23,12 @@ constexpr std::size_t kMinSpotPixels = 4;
 // A spot's path (the white pixels around it) has an RMS radius within this factor of
 // the spot's expected radius r0 / R * sqrt(a b).
 constexpr double kSpotSizeFactor = 2.5;
-// Dark paths of spot size a target's disk may hold, its spots among them (findSpots).
+// The two spots' paths are of one size within this factor (mayBeOccludedTarget says why).
+constexpr double kSpotPairSizeRatio = 1.3;
+// Dark paths of spot size a target's disk may hold, its spots among them, and by how much
+// the best pair of them must sit better than the next (findSpots).
 constexpr std::size_t kMaxDiskBlobs = 4;
+constexpr double kClearlyBestPair = 1.0;
 // The consensus fit scores its candidates on at most this many pixels of the path.
 constexpr std::size_t kConsensusScorePoints = 128;
 
@@ -137,12 +141,14 @@ Eigen::Vector2d unitFrame(const Ellipse& e, double x, double y) {
   return {(dx * c + dy * s) / e.a, (-dx * s + dy * c) / e.b};
 }
 
-// Dark closed paths of spot size inside `e` (other than `self`) into ws.spots; true when
-// exactly one pair of them sits where the target's spots sit (the centre spot within the
-// tolerance of the centre, the offset spot at its distance from it). spots[0] is then the
-// centre spot. Other dark paths of spot size may lie on the disk (an occluder's edge broken
-// up by a local threshold), but at most kMaxDiskBlobs of them: a photograph's texture inside
-// a false ellipse holds many, and some pair of those would sit right by chance.
+// Dark closed paths of spot size inside `e` (other than `self`) into ws.spots; true when a
+// pair of them sits where the target's spots sit (the centre spot within the tolerance of
+// the centre, the offset spot at its distance from it, within the tolerance too). spots[0]
+// is then the centre spot. Other dark paths of spot size may lie on the disk (the end of a
+// clamp or of tape, broken up by a local threshold), at most kMaxDiskBlobs in all: a
+// photograph's texture inside a false ellipse holds many, and some pair of them would sit
+// right by chance. Of several pairs that sit right, the best is taken only when it is
+// clearly so (pairMisfit, by kClearlyBestPair).
 bool findSpots(const EllipseOptions& o, const TargetGeometry& g, const Ellipse& e,
                std::size_t self, EllipseWorkspace& ws, std::array<std::size_t, 2>& spots) {
   ws.spots.clear();
@@ -159,19 +165,28 @@ bool findSpots(const EllipseOptions& o, const TargetGeometry& g, const Ellipse& 
   if (ws.spots.size() < 2) return false;
   const double tol = o.target_spot_tolerance, offset = g.spot_offset_mm / g.radius_mm;
   auto at = [&](std::size_t j) { return unitFrame(e, ws.paths[j].cx, ws.paths[j].cy); };
-  int pairs = 0;
+  double best = std::numeric_limits<double>::infinity(), second = best;
   for (const std::size_t c : ws.spots) {
     const Eigen::Vector2d qc = at(c);
     if (qc.norm() > tol) continue;
     for (const std::size_t f : ws.spots) {
       const Eigen::Vector2d qf = at(f);
       // The offset spot lies farther out than the centre spot.
-      if (f == c || qf.norm() < qc.norm() || std::abs((qf - qc).norm() - offset) > tol) continue;
-      if (++pairs > 1) return false;
-      spots = {c, f};
+      const double apart = (qf - qc).norm();
+      if (f == c || qf.norm() < qc.norm() || std::abs(apart - offset) > tol) continue;
+      // Misfit: each measure in units of its tolerance; the spots are of one size.
+      const double misfit = (qc.norm() + std::abs(apart - offset)) / tol +
+                            std::abs(std::log(ws.paths[c].rms_radius / ws.paths[f].rms_radius)) / std::log(kSpotPairSizeRatio);
+      if (misfit < best) {
+        second = best;
+        best = misfit;
+        spots = {c, f};
+      } else {
+        second = std::min(second, misfit);
+      }
     }
   }
-  return pairs == 1;
+  return std::isfinite(best) && second > best + kClearlyBestPair;
 }
 
 // Is dark path j one of the spots of a target found already?
@@ -313,7 +328,6 @@ Status consensusFit(const EllipseOptions& o, std::span<const EdgePixel> path, El
 // target's spots; this keeps the consensus fit to the paths that can be a target, none
 // in the common frame.
 constexpr double kOccludedReach = 1.5;
-constexpr double kSpotPairSizeRatio = 1.3;
 constexpr double kSpotPairSlack = 2.0;
 
 // Could dark paths p and q be the target's two spots? The same size within

@@ -38,11 +38,13 @@ constexpr int kSpotWindowMaxPx = 128;  // wider boxes (spots over ~50 px) keep t
 constexpr int kSaturatedGrey = 250;
 constexpr double kGlareAboveLocal = 0.15;
 constexpr double kGlareAboveLocalGrey = 20.0;
-// More than two dark components on the disk (an occluder's end, a shadow's edge): the one
-// pair that sits where the target's spots sit is taken, within this share of the rim's
-// radius (as the ellipse stage's default spot tolerance), of areas within kPairAreaRatio.
+// More than two dark components on the disk (an occluder's end, a shadow's edge): the pair
+// that sits where the target's spots sit is taken, within this share of the rim's radius
+// (as the ellipse stage's default spot tolerance), of areas within kPairAreaRatio, when it
+// sits better than any other pair by kClearlyBestPair (chooseSpots).
 constexpr double kSpotPlaceTolerance = 0.2;
 constexpr double kPairAreaRatio = 3.0;
+constexpr double kClearlyBestPair = 1.0;
 
 // The darkness-weighted centroid under a Gaussian window that follows it (a matched-filter
 // centre): each pass weighs a pixel by (white - g) exp(-|p - u|^2 / 2 s^2) about the last
@@ -330,20 +332,25 @@ void darkComponents(const cv::Mat& grey, const cv::Rect& crop, const EllipseForm
   }
 }
 
-// Do dark components c (the centre spot) and f (the offset spot), crop coordinates from
-// `origin`, sit where the target's spots sit on `rim`? Within kSpotPlaceTolerance of the
-// rim's radius, and of areas within kPairAreaRatio.
-bool spotsInPlace(const SpotComponent& c, const SpotComponent& f, cv::Point origin, const EllipseForm& rim,
-                  const TargetGeometry& target) {
-  if (std::max(c.area, f.area) > kPairAreaRatio * std::min(c.area, f.area)) return false;
+// How far dark components c (the centre spot) and f (the offset spot), crop coordinates
+// from `origin`, sit from where the target's spots sit on `rim`: the centre spot's distance
+// from the centre and the error of their distance, in units of kSpotPlaceTolerance of the
+// rim's radius, plus their areas' ratio on the log scale of kPairAreaRatio. Infinite when a
+// measure is beyond its tolerance.
+double spotsMisfit(const SpotComponent& c, const SpotComponent& f, cv::Point origin, const EllipseForm& rim,
+                   const TargetGeometry& target) {
+  constexpr double kOut = std::numeric_limits<double>::infinity();
+  const double areas = std::abs(std::log(static_cast<double>(c.area) / f.area)) / std::log(kPairAreaRatio);
+  if (areas > 1.0) return kOut;
   auto centre = [&](const SpotComponent& k) {
     return Eigen::Vector2d(origin.x + 0.5 * (k.x0 + k.x1), origin.y + 0.5 * (k.y0 + k.y1));
   };
   const Eigen::Vector2d pc = centre(c), pf = centre(f), d = pf - pc;
   const double rc = std::sqrt(rim.rho2(pc.x(), pc.y()));
-  return rc <= kSpotPlaceTolerance && std::sqrt(rim.rho2(pf.x(), pf.y())) >= rc &&
-         std::abs(std::sqrt(rim.norm2(d.x(), d.y())) - target.spot_offset_mm / target.radius_mm) <=
-             kSpotPlaceTolerance;
+  const double apartError = std::abs(std::sqrt(rim.norm2(d.x(), d.y())) - target.spot_offset_mm / target.radius_mm);
+  if (rc > kSpotPlaceTolerance || std::sqrt(rim.rho2(pf.x(), pf.y())) < rc || apartError > kSpotPlaceTolerance)
+    return kOut;
+  return (rc + apartError) / kSpotPlaceTolerance + areas;
 }
 
 std::uint8_t levelAt(double grey) { return static_cast<std::uint8_t>(std::clamp(floorToInt(grey), 0, 255)); }
@@ -351,7 +358,8 @@ std::uint8_t levelAt(double grey) { return static_cast<std::uint8_t>(std::clamp(
 // The two spots among the dark components (crop coordinates from `origin`): of spot size,
 // between 1/5 and 5 times the expected area. Those reaching the search's edge are taken only
 // when, with them, there are exactly two: a spot of a small, steeply seen target can reach
-// it too. Of more than two inside the search, the one pair in place (spotsInPlace) is taken.
+// it too. Of more than two inside the search, the pair in place (spotsMisfit) is taken when
+// no other is nearly as well in place.
 // True with the pair in `kept`; `candidates` counts the components of spot size.
 bool chooseSpots(const std::vector<SpotComponent>& components, cv::Point origin, const Ellipse& detected,
                  const TargetGeometry& target, double expected, std::array<SpotComponent, 2>& kept, int& candidates) {
@@ -376,17 +384,24 @@ bool chooseSpots(const std::vector<SpotComponent>& components, cv::Point origin,
     return true;
   }
   if (accepted <= 2) return accepted == 2;
+  // Of several pairs in place, the best, when clearly so.
   const EllipseForm rim(detected, 1.0);
-  int pairs = 0;
+  double best = std::numeric_limits<double>::infinity(), second = best;
   for (const SpotComponent& c : components) {
     if (!ofSpotSize(c) || c.at_limit) continue;
     for (const SpotComponent& f : components) {
-      if (&f == &c || !ofSpotSize(f) || f.at_limit || !spotsInPlace(c, f, origin, rim, target)) continue;
-      if (++pairs > 1) return false;
-      kept = {c, f};
+      if (&f == &c || !ofSpotSize(f) || f.at_limit) continue;
+      const double misfit = spotsMisfit(c, f, origin, rim, target);
+      if (misfit < best) {
+        second = best;
+        best = misfit;
+        kept = {c, f};
+      } else {
+        second = std::min(second, misfit);
+      }
     }
   }
-  return pairs == 1;
+  return std::isfinite(best) && second > best + kClearlyBestPair;
 }
 
 }  // namespace

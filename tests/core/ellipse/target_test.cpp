@@ -346,6 +346,40 @@ TEST_F(TargetScene, TwoDotsWithoutARimAreNoTarget) {
   EXPECT_TRUE(st == Status::NoTarget || (ok(st) && !found.empty() && !found[0].spots_found)) << statusName(st);
 }
 
+// A third dark mark on the disk (the end of a clamp or of tape, broken up by a local
+// threshold), where the offset spot could nearly be: the pair that sits best, of one size,
+// is the target's spots. A mark of the spots' size where the offset spot could be as well
+// leaves the spots undecided: no target with its spots.
+TEST_F(TargetScene, AThirdMarkOnTheDiskLeavesThePairThatSitsBest) {
+  for (const Pose& pose : {Pose{0, 0, 0, 0, 0, 800}, Pose{30, -20, 40, 30, -20, 700}}) {
+    SCOPED_TRACE(pose.tz_mm);
+    auto markAt = [&](cv::Mat& img, double y_mm, double radius_mm) {
+      const Eigen::Vector3d centre = rotationMatrix(pose) * Eigen::Vector3d(0.0, y_mm, 0.0) + translation(pose);
+      const Eigen::Vector2d px = projectIdeal(camera, centre);
+      const int r = static_cast<int>(std::lround(radius_mm * camera.fu() / centre.z()));
+      cv::circle(img, cv::Point(static_cast<int>(std::lround(px.x())), static_cast<int>(std::lround(px.y()))), r,
+                 cv::Scalar(scene.black_level), cv::FILLED, cv::LINE_AA);
+    };
+    cv::Mat img = render(pose);
+    markAt(img, -31.0, 4.0);  // 0.62 of the radius from the centre spot; smaller than a spot
+    ASSERT_EQ(detect(img), Status::Ok);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_TRUE(found[0].spots_found);
+    const Eigen::Vector2d centre = projectIdeal(camera, translation(pose));
+    EXPECT_NEAR(ws.paths[found[0].spot_paths[0]].cx, centre.x(), 1.0);
+    EXPECT_NEAR(ws.paths[found[0].spot_paths[0]].cy, centre.y(), 1.0);
+    const Eigen::Vector2d offset =
+        projectIdeal(camera, rotationMatrix(pose) * Eigen::Vector3d(target.spot_offset_mm, 0.0, 0.0) + translation(pose));
+    EXPECT_NEAR(ws.paths[found[0].spot_paths[1]].cx, offset.x(), 1.0);
+    EXPECT_NEAR(ws.paths[found[0].spot_paths[1]].cy, offset.y(), 1.0);
+
+    cv::Mat twin = render(pose);
+    markAt(twin, -target.spot_offset_mm, target.spot_radius_mm);
+    const Status st = detect(twin);
+    EXPECT_TRUE(!ok(st) || found.empty() || !found[0].spots_found) << statusName(st);
+  }
+}
+
 TEST(TargetDetection, EmptyAndTinyInputs) {
   EllipseWorkspace ws;
   std::vector<TargetDetection> out;
