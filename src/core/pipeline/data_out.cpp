@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <vector>
 
 #include "core/common/pose_csv.h"
 
@@ -30,6 +31,41 @@ Ending howItEnds(std::FILE* f) {
   for (int c; (c = std::fgetc(f)) != EOF;)
     if (c == '\n') return Ending::CutRow;
   return Ending::CutHeader;
+}
+
+// The file's first line, without its line end (what there is of it when cut off).
+std::string firstLine(std::FILE* f) {
+  std::rewind(f);
+  std::string line;
+  for (int c; (c = std::fgetc(f)) != EOF && c != '\n';)
+    if (c != '\r') line += static_cast<char>(c);
+  return line;
+}
+
+std::vector<std::string> columnsOf(const std::string& header) {
+  std::vector<std::string> columns;
+  std::size_t start = 0;
+  for (std::size_t comma; (comma = header.find(',', start)) != std::string::npos; start = comma + 1)
+    columns.push_back(header.substr(start, comma - start));
+  columns.push_back(header.substr(start));
+  return columns;
+}
+
+// Where `found` (an existing file's header) differs from `written` (today's), in words;
+// empty when they are the same. A header cut off by a killed run (`cut`) need only be the
+// start of today's.
+std::string headerDifference(const std::string& found, const std::string& written, bool cut) {
+  if (found == written || (cut && written.compare(0, found.size(), found) == 0)) return {};
+  const std::vector<std::string> have = columnsOf(found), want = columnsOf(written);
+  for (std::size_t k = 0; k < std::min(have.size(), want.size()); ++k)
+    if (have[k] != want[k])
+      return "its column " + std::to_string(k + 1) + " is \"" + have[k] + "\" where ImagePro writes \"" + want[k] +
+             "\"";
+  if (have.size() < want.size())
+    return "it has " + std::to_string(have.size()) + " columns where ImagePro writes " + std::to_string(want.size()) +
+           " (from \"" + want[have.size()] + "\" on)";
+  return "it has " + std::to_string(have.size()) + " columns where ImagePro writes " + std::to_string(want.size()) +
+         " (\"" + have[want.size()] + "\" and on are not written)";
 }
 
 }  // namespace
@@ -90,7 +126,17 @@ Status DataOut::open(const std::string& path, ExistingFile existing, std::string
   path_ = target;
   std::string start;  // what goes before the first row
   if (!empty) {
-    switch (howItEnds(file_)) {
+    const Ending ending = howItEnds(file_);
+    // Rows go only under the header they belong to: an older version's or another program's
+    // file is left as it is.
+    if (const std::string difference = headerDifference(firstLine(file_), header(), ending == Ending::CutHeader);
+        !difference.empty()) {
+      error = target + ": not appended to, its header is not today's data-out header: " + difference +
+              " (write to a new file, or a new numbered one beside it)";
+      close();
+      return Status::FileNotWritable;
+    }
+    switch (ending) {
       case Ending::Whole: break;
       case Ending::CutRow:
         start = "\n";

@@ -4,7 +4,9 @@
 // regions and the per-stage times. Each row is flushed as it is written, so a killed
 // process loses at most the frame in flight; an existing file is never overwritten.
 // Appending to a file whose last row a killed run left cut off starts on a new line
-// (the cut-off row is counted lost, never glued to the next one).
+// (the cut-off row is counted lost, never glued to the next one). Rows are appended only
+// under today's header: a file that starts otherwise (an older version's columns, another
+// program's) is refused with the difference named, and nothing is written to it.
 #include <cstdio>
 #include <string>
 
@@ -15,7 +17,7 @@ namespace imagepro {
 
 enum class ExistingFile : std::uint8_t {
   Fail,     // refuse: the caller asks the user
-  Append,   // add rows to the end (no second header)
+  Append,   // add rows to the end (no second header), when its header is today's
   NewName,  // write to "name-1.csv", "name-2.csv", ... instead
 };
 

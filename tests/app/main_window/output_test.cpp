@@ -258,12 +258,23 @@ void OutputTest::dataOutNeverOverwritesSilently() {
   QTRY_VERIFY_WITH_TIMEOUT(w.lastError().contains(QStringLiteral("dataout.csv")), 5000);
   QVERIFY(w.dataOutPath().isEmpty());
   QCOMPARE(readLines(path), QStringList{QStringLiteral("precious")});
-  // Appending keeps the old content.
+  // Rows go only under today's header: appending to another file is refused, the file kept.
+  w.startDataOut(path, ExistingFile::Append, false);
+  QTRY_VERIFY_WITH_TIMEOUT(w.lastError().contains(QStringLiteral("not appended to")), 5000);
+  QVERIFY(w.dataOutPath().isEmpty());
+  QCOMPARE(readLines(path), QStringList{QStringLiteral("precious")});
+  // Under today's header, appending keeps the old content.
+  const QByteArray header = QByteArray::fromStdString(DataOut::header()) + "\n";
+  {
+    QFile f(path);
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write(header);
+  }
   w.startDataOut(path, ExistingFile::Append, false);
   QTRY_COMPARE_WITH_TIMEOUT(w.dataOutPath(), path, 5000);
   w.stopDataOut();
   QTRY_VERIFY(w.dataOutPath().isEmpty());
-  QCOMPARE(readLines(path).front(), QStringLiteral("precious"));
+  QCOMPARE(readLines(path).front(), QString::fromStdString(DataOut::header()));
   // A row a crash cut off: appending starts on a new line and the status bar says the row is lost.
   {
     QFile f(path);
@@ -278,7 +289,7 @@ void OutputTest::dataOutNeverOverwritesSilently() {
   {
     QFile f(path);
     QVERIFY(f.open(QIODevice::ReadOnly));
-    QCOMPARE(f.readAll(), QByteArray("precious\n7,ok,1.5\n"));  // the next row will start on a line of its own
+    QCOMPARE(f.readAll(), header + "7,ok,1.5\n");  // the next row will start on a line of its own
   }
   // Replacing only when asked for.
   w.startDataOut(path, ExistingFile::Fail, true);

@@ -71,11 +71,44 @@ TEST(DataOut, NeverOverwritesAnExistingFile) {
   EXPECT_EQ(fs::path(out.path()).filename(), "d-1.csv");
   out.close();
 
-  ASSERT_EQ(out.open(p.string(), ExistingFile::Append, err), Status::Ok);
+  const std::string earlier = DataOut::header() + "\n" + DataOut::row(okFrame(2)) + "\n";
+  ASSERT_TRUE(writeFileAtomically(p.string(), earlier, err));
+  ASSERT_EQ(out.open(p.string(), ExistingFile::Append, err), Status::Ok) << err;
   ASSERT_TRUE(out.write(okFrame(3), err));
   out.close();
-  const std::string text = slurp(p);
-  EXPECT_EQ(text.rfind("precious\n3,ok,", 0), 0u);  // appended, no second header
+  EXPECT_EQ(slurp(p), earlier + DataOut::row(okFrame(3)) + "\n");  // appended, no second header
+}
+
+// Rows are appended only under today's header: a file an older version wrote (without
+// the last column), or another program's, is refused with the difference named, and left
+// as it was, byte for byte.
+TEST(DataOut, AppendUnderAnotherHeaderIsRefused) {
+  const fs::path dir = freshDir("dataout_other_header");
+  const fs::path p = dir / "d.csv";
+  const std::string today = DataOut::header();
+  const std::string older = today.substr(0, today.rfind(','));
+  struct Case {
+    std::string content, named;
+  };
+  for (const Case& c : {Case{older + "\n" + "0,ok,1,2,3,4,5,6\n", "from \"rim_seen\" on"},
+                        Case{"precious\n", "column 1 is \"precious\" where ImagePro writes \"frame\""},
+                        Case{today + ",note\n", "\"note\" and on are not written"},
+                        Case{"frame,status,X", "column 3 is \"X\""}}) {
+    SCOPED_TRACE(c.content);
+    std::string err;
+    ASSERT_TRUE(writeFileAtomically(p.string(), c.content, err));
+    DataOut out;
+    EXPECT_EQ(out.open(p.string(), ExistingFile::Append, err), Status::FileNotWritable);
+    EXPECT_FALSE(out.isOpen());
+    EXPECT_NE(err.find("d.csv: not appended to"), std::string::npos) << err;
+    EXPECT_NE(err.find(c.named), std::string::npos) << err;
+    EXPECT_EQ(slurp(p), c.content);
+    // A new numbered file beside it takes the rows instead.
+    ASSERT_EQ(out.open(p.string(), ExistingFile::NewName, err), Status::Ok) << err;
+    EXPECT_EQ(fs::path(out.path()).filename(), "d-1.csv");
+    out.close();
+    fs::remove(out.path());
+  }
 }
 
 // A run killed while writing a row leaves the file without a final line end. Appending
