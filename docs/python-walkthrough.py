@@ -44,8 +44,11 @@
 # ("ok" or the name of the first stage's failure),
 # `message`, `ok`, `ellipse`, `spots` (the centre spot's and the offset spot's `(u, v)` in
 # image pixels as seen), `pose`, `candidates` (the two poses of an `AmbiguousPose`),
-# `targets`, `index`, `timestamp_s`, `search_region`, `detected_region`, `threshold` and
-# `times_us` (each stage's time).
+# `targets`, `index`, `timestamp_s`, `search_region`, `detected_region`, `threshold`,
+# `times_us` (each stage's time), `rim_seen` (the share of the rim seen, or `None`) and
+# `lens_inverse` (which inverse of the lens corrected the features, or `None` before the
+# reconstruction stage): the last three are the frame record's, as every output names them
+# (`docs/conventions.md`).
 #
 # ## Errors: what raises and what is reported
 #

@@ -1,51 +1,32 @@
 // imagepro-cli reconstruct: the whole pipeline over images or the virtual source,
 // one pose row per frame in the CSV format of docs/conventions.md (or JSON).
-#include <nlohmann/json.hpp>
-
 #include <cstdio>
 
 #include "cli/command.h"
 #include "cli/enum_options.h"
 #include "cli/frame_input.h"
 #include "cli/virtual_motion_options.h"
-#include "core/common/pose_csv.h"
 #include "core/pipeline/data_out.h"
 #include "core/pipeline/engine.h"
+#include "core/pipeline/frame_record.h"
 #include "core/pipeline/frame_clock.h"
 #include "core/pipeline/pose_stream.h"
 
 namespace imagepro::cli {
 namespace {
 
-// One frame as a JSON object on one line. The library escapes the frame's name (quotes,
-// backslashes, control characters); bytes that are not UTF-8 become U+FFFD rather than
-// invalid JSON.
-std::string jsonRow(const std::string& frame, const FrameResult& r) {
-  auto put = [](nlohmann::ordered_json& object, const Pose& p) {
-    object["Rx_deg"] = p.rx_deg;
-    object["Ry_deg"] = p.ry_deg;
-    object["Rz_deg"] = p.rz_deg;
-    object["Tx_mm"] = p.tx_mm;
-    object["Ty_mm"] = p.ty_mm;
-    object["Tz_mm"] = p.tz_mm;
-  };
-  nlohmann::ordered_json row;
-  row["frame"] = frame;
-  row["status"] = std::string(statusName(r.status));
-  if (ok(r.status) && r.pose) put(row, *r.pose);
-  if (r.rim_seen > 0.0) row["rim_seen"] = r.rim_seen;
-  if (r.reached == ApplicationLevel::Reconstruction) row["lens_inverse"] = lensInverseName(r.lens_inverse);
+// One frame as a JSON object on one line: the record's fields that have a value, and when
+// the spots could not tell the rim's two circles apart (AmbiguousPose, or ok with the pose
+// halfway between them) both as "candidates", the one that fits the spots better first.
+std::string jsonRow(const FrameResult& r) {
+  std::string row = "{" + recordJsonMembers(r, kReconstructJson);
   if (r.ambiguous_poses) {
-    // Both of the rim's circles, the one that fits the spots better first: AmbiguousPose,
-    // or ok with the pose halfway between them.
-    row["candidates"] = nlohmann::ordered_json::array();
-    for (const Pose& p : *r.ambiguous_poses) {
-      nlohmann::ordered_json candidate;
-      put(candidate, p);
-      row["candidates"].push_back(candidate);
-    }
+    row += ",\"candidates\":[";
+    for (std::size_t k = 0; k < r.ambiguous_poses->size(); ++k)
+      row += (k ? ",{" : "{") + poseJsonMembers(&(*r.ambiguous_poses)[k]) + "}";
+    row += ']';
   }
-  return row.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+  return row + "}";
 }
 
 // The stream section of the settings, switched on by --stream udp://HOST:PORT; --stream-format
@@ -91,9 +72,9 @@ int run(const Args& args) {
 
   Engine engine(settings);
   FrameResult result;
+  const std::uint16_t csv_fields = kReconstructCsv | (with_truth ? kTruthCsv : 0);
   if (format == "csv")
-    std::printf("%s\n", poseCsvHeader(with_truth ? "true_Rx_deg,true_Ry_deg,true_Rz_deg,true_Tx_mm,true_Ty_mm,true_Tz_mm,rim_seen"
-                                                 : "rim_seen").c_str());
+    std::printf("%s\n", recordCsvHeader(csv_fields).c_str());
   else
     std::printf("[");
   bool first = true;
@@ -108,22 +89,10 @@ int run(const Args& args) {
     ++frames;
     if (result.pose) ++reconstructed;
     const std::string frame = frameLabel(result);
-    if (format == "csv") {
-      std::string extra;
-      if (with_truth && result.truth) {
-        const Pose& t = *result.truth;
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "%.6f,%.6f,%.6f,%.6f,%.6f,%.6f", t.rx_deg, t.ry_deg, t.rz_deg, t.tx_mm,
-                      t.ty_mm, t.tz_mm);
-        extra = buf;
-      } else if (with_truth) {
-        extra = ",,,,,";
-      }
-      extra += (with_truth ? "," : "") + rimSeenCell(result);
-      std::printf("%s\n", poseCsvRow(frame, result.status, result.pose, extra).c_str());
-    } else {
-      std::printf("%s\n  %s", first ? "" : ",", jsonRow(frame, result).c_str());
-    }
+    if (format == "csv")
+      std::printf("%s\n", recordCsvRow(result, csv_fields).c_str());
+    else
+      std::printf("%s\n  %s", first ? "" : ",", jsonRow(result).c_str());
     first = false;
     if (!ok(result.status) && !source->lastError().empty())
       std::fprintf(stderr, "%s\n", frameProblem(frame, source->lastError()).c_str());

@@ -16,6 +16,7 @@
 #include <optional>
 
 #include "core/pipeline/engine.h"
+#include "core/pipeline/frame_record.h"
 #include "core/pipeline/stage_chain.h"
 #include "core/settings/enum_names.h"
 #include "core/source/virtual_renderer.h"
@@ -223,10 +224,10 @@ P_camera = Rz(rz) Ry(ry) Rx(rx) P_target + (tx, ty, tz); angles in degrees, leng
 }
 
 void bindResult(py::module_& m) {
-  py::class_<Result>(m, "Result", R"(What one frame gave. status is "ok" or the name of the first stage's
+  py::class_<Result> result(m, "Result", R"(What one frame gave. status is "ok" or the name of the first stage's
 failure (NoTarget, SpotsNotFound, AmbiguousPose, ...); a failure is reported here, not raised:
-raise_for_status() raises it as its imagepro exception.)")
-      .def_property_readonly("status", [](const Result& r) { return std::string(statusName(r.frame.status)); })
+raise_for_status() raises it as its imagepro exception.)");
+  result.def_property_readonly("status", [](const Result& r) { return std::string(statusName(r.frame.status)); })
       .def_property_readonly("message", [](const Result& r) { return std::string(statusMessage(r.frame.status)); })
       .def_property_readonly("ok", [](const Result& r) { return ok(r.frame.status); })
       .def_property_readonly(
@@ -249,13 +250,7 @@ raise_for_status() raises it as its imagepro exception.)")
           "The two poses the rim allows when the spots could not tell them apart (AmbiguousPose, or ok "
           "with the pose halfway between them), the one fitting the spots better first.")
       .def_property_readonly("targets", [](const Result& r) { return r.frame.targets; })
-      .def_property_readonly(
-          "rim_seen", [](const Result& r) { return r.frame.rim_seen > 0.0 ? py::object(py::float_(r.frame.rim_seen)) : py::none(); },
-          "The share of the rim seen (0..1; less where an occluder hides part of it), or None without a fitted rim.")
-      .def_property_readonly("lens_inverse", [](const Result& r) { return std::string(lensInverseName(r.frame.lens_inverse)); },
-                             "Which inverse of the lens model corrected the features: none, taylor, exact, exact-wide-lens.")
       .def_property_readonly("index", [](const Result& r) { return r.frame.index; })
-      .def_property_readonly("timestamp_s", [](const Result& r) { return r.frame.timestamp_s; })
       .def_property_readonly("reached", [](const Result& r) { return std::string(enumName(r.frame.reached)); },
                              "The last stage that ran.")
       .def_property_readonly("threshold", [](const Result& r) { return r.frame.threshold; })
@@ -281,6 +276,19 @@ raise_for_status() raises it as its imagepro exception.)")
         else if (!r.frame.targets.empty()) text += " " + ellipseRepr(r.frame.targets.front().ellipse);
         return text + ">";
       });
+  // The frame record's scalar fields (core/pipeline/frame_record.h): a number, a text, or None.
+  for (const FrameField& field : frameFields()) {
+    if (!(field.outputs & kPython)) continue;
+    result.def_property_readonly(
+        std::string(field.name).c_str(),
+        [&field](const Result& r) -> py::object {
+          const FieldValue v = field.value(r.frame, field.arg);
+          if (v.kind == FieldValue::Kind::Number) return py::float_(v.number);
+          if (v.kind == FieldValue::Kind::Text) return py::str(v.text);
+          return py::none();
+        },
+        std::string(field.description).c_str());
+  }
 }
 
 }  // namespace

@@ -113,7 +113,7 @@ TEST(CliReconstruction, JsonEscapesNamesAndMatchesTheRenderedPoses) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const auto csv = lines(r.out);
   ASSERT_EQ(csv.size(), 2u) << r.out;
-  EXPECT_EQ(csv[1], "blank.png,NoTarget,,,,,,");
+  EXPECT_EQ(csv[1], "blank.png,NoTarget,,,,,,,");  // every column of the header, rim_seen empty
 }
 
 // A frame of another size than the camera model's is a named error row, not a wrong pose.

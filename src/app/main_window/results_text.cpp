@@ -3,6 +3,7 @@
 #include <QStringList>
 
 #include "app/settings/enum_text.h"
+#include "core/pipeline/frame_record.h"
 
 namespace imagepro::app {
 
@@ -56,9 +57,15 @@ QString formatResults(const DisplayPacket& packet) {
       lines << QStringLiteral("          Sampson %1 px").arg(t.sampson_px, 0, 'f', 3);
     }
   }
-  if (r.rim_seen > 0.0) lines << QStringLiteral("Rim seen  %1 %").arg(100.0 * r.rim_seen, 0, 'f', 0);
-  if (r.reached == ApplicationLevel::Reconstruction && r.lens_inverse == LensInverse::ExactWideLens)
-    lines << QStringLiteral("Lens      exact inverse (wide lens)");
+  // The frame record's fields for the results text (core/pipeline/frame_record.h), when they have a value.
+  for (const FrameField& field : frameFields()) {
+    if (!(field.outputs & kResultsText)) continue;
+    const FieldValue v = field.value(r, field.arg);
+    if (v.kind == FieldValue::Kind::None) continue;
+    const QString value = v.kind == FieldValue::Kind::Number ? QString::number(v.number, 'f', field.decimals)
+                                                             : QString::fromStdString(v.text);
+    lines << QStringLiteral("%1 %2 %3").arg(fromView(field.label), -9).arg(value, fromView(field.unit)).trimmed();
+  }
   if (r.pose) lines << poseLines("Pose", *r.pose);
   else lines << QStringLiteral("Pose      -");
   if (r.ambiguous_poses) {

@@ -16,6 +16,7 @@
 #include <limits>
 
 #include "core/common/atomic_file.h"
+#include "core/pipeline/frame_record.h"
 #include "core/common/pose_csv.h"
 
 namespace imagepro::app {
@@ -184,7 +185,7 @@ void PosePlots::redrawPlot(int i, const ShownRange& r) {
 }
 
 bool PosePlots::exportCsv(const QString& path, QString& error) const {
-  std::string text = poseCsvHeader("timestamp_s,truth_Rx_deg,truth_Ry_deg,truth_Rz_deg,truth_Tx_mm,truth_Ty_mm,truth_Tz_mm");
+  std::string text = poseCsvHeader("timestamp_s," + recordCsvHeader(kTruthCsv));  // the truth as reconstruct names it
   text += '\n';
   for (const PoseSample& s : recorded_) {
     char extra[256];

@@ -5,17 +5,11 @@
 #include <filesystem>
 #include <vector>
 
-#include "core/common/pose_csv.h"
+#include "core/pipeline/frame_record.h"
 
 namespace imagepro {
 
 namespace {
-
-std::string regionColumns(const cv::Rect& r) {
-  if (r.empty()) return ",,,";
-  return std::to_string(r.x) + ',' + std::to_string(r.y) + ',' + std::to_string(r.width) + ',' +
-         std::to_string(r.height);
-}
 
 std::string numberedName(const std::filesystem::path& p, int k) {
   return (p.parent_path() / (p.stem().string() + "-" + std::to_string(k) + p.extension().string())).string();
@@ -72,27 +66,9 @@ std::string headerDifference(const std::string& found, const std::string& writte
 
 DataOut::~DataOut() { close(); }
 
-std::string DataOut::header() {
-  std::string extra = "timestamp_s,search_x,search_y,search_w,search_h,target_x,target_y,target_w,target_h";
-  for (std::size_t s = 0; s < kStageCount; ++s) {
-    extra += ',';
-    extra += stageName(static_cast<Stage>(s));
-    extra += "_us";
-  }
-  return poseCsvHeader(extra + ",rim_seen");
-}
+std::string DataOut::header() { return recordCsvHeader(kDataOutCsv); }
 
-std::string DataOut::row(const FrameResult& r) {
-  std::string extra = poseNumber(r.timestamp_s);
-  extra += ',' + regionColumns(r.search_region) + ',' + regionColumns(r.detected_region);
-  for (double us : r.times.us) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, ",%.1f", us);
-    extra += buf;
-  }
-  extra += ',' + rimSeenCell(r);
-  return poseCsvRow(frameLabel(r), r.status, r.pose, extra);
-}
+std::string DataOut::row(const FrameResult& r) { return recordCsvRow(r, kDataOutCsv); }
 
 Status DataOut::open(const std::string& path, ExistingFile existing, std::string& error) {
   close();

@@ -27,11 +27,4 @@ double StageTimes::total() const {
 
 std::string frameLabel(const FrameResult& r) { return r.name.empty() ? std::to_string(r.index) : r.name; }
 
-std::string rimSeenCell(const FrameResult& r) {
-  if (!(r.rim_seen > 0.0)) return {};
-  char text[16];
-  std::snprintf(text, sizeof text, "%.3f", r.rim_seen);
-  return text;
-}
-
 }  // namespace imagepro

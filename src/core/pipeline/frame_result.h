@@ -76,7 +76,4 @@ struct FrameResult {
 // The frame's "frame" column (docs/conventions.md): the file name for file input, the index otherwise.
 std::string frameLabel(const FrameResult& result);
 
-// The frame's rim_seen column: the share with three decimals, empty when no rim was fitted.
-std::string rimSeenCell(const FrameResult& result);
-
 }  // namespace imagepro

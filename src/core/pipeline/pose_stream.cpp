@@ -4,7 +4,6 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-#include <nlohmann/json.hpp>
 
 #include <bit>
 #include <cerrno>
@@ -12,7 +11,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "core/common/pose_csv.h"
+#include "core/pipeline/frame_record.h"
 #include "core/settings/enum_names.h"
 #include "core/settings/settings.h"
 
@@ -21,25 +20,6 @@ namespace imagepro {
 namespace {
 
 constexpr std::string_view kScheme = "udp://";
-
-// The six pose columns of the JSON datagram, as the CSV prints them; null without a pose.
-void appendPose(std::string& out, Status status, const std::optional<Pose>& pose) {
-  const bool have = ok(status) && pose;
-  const auto values = have ? poseColumnValues(*pose) : std::array<double, 6>{};
-  for (std::size_t i = 0; i < kPoseColumnNames.size(); ++i) {
-    out += ",\"";
-    out += kPoseColumnNames[i];
-    out += "\":";
-    // JSON has no NaN or infinity: such a value (never a pose's, but never invalid JSON either) is null.
-    out += have && std::isfinite(values[i]) ? poseNumber(values[i]) : std::string("null");
-  }
-}
-
-void appendStatus(std::string& out, Status status) {
-  out += "\"status\":\"";
-  out += statusName(status);  // names are plain ASCII identifiers: nothing to escape
-  out += '"';
-}
 
 std::string hostForUrl(const std::string& host) {
   return host.find(':') != std::string::npos ? "[" + host + "]" : host;
@@ -95,27 +75,19 @@ std::string streamUrl(const StreamOptions& o) {
 }
 
 std::string poseStreamJson(const FrameResult& r) {
-  std::string out = "{\"frame\":" + std::to_string(r.index);
-  out += ",\"timestamp_s\":" + (std::isfinite(r.timestamp_s) ? poseNumber(r.timestamp_s) : std::string("null")) + ",";
-  appendStatus(out, r.status);
-  appendPose(out, r.status, r.pose);
-  out += ",\"rim_seen\":" + (r.rim_seen > 0.0 ? poseNumber(r.rim_seen) : std::string("null"));
-  if (!r.name.empty()) {
-    // The library escapes the file name; bytes that are not UTF-8 become U+FFFD.
-    out += ",\"name\":" + nlohmann::json(r.name).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-  }
+  std::string out = "{" + recordJsonMembers(r, kStreamJson);
   if (r.targets.size() > 1) {
     out += ",\"targets\":[";
     for (std::size_t i = 0; i < r.targets.size(); ++i) {
+      const TargetSummary& t = r.targets[i];
       out += i ? ",{" : "{";
-      appendStatus(out, r.targets[i].status);
-      appendPose(out, r.targets[i].status, r.targets[i].pose);
+      out += "\"status\":\"" + std::string(statusName(t.status)) + "\",";  // names need no escaping
+      out += poseJsonMembers(ok(t.status) && t.pose ? &*t.pose : nullptr);
       out += '}';
     }
     out += ']';
   }
-  out += '}';
-  return out;
+  return out + "}";
 }
 
 std::array<double, 6> openTrackValues(const Pose& pose) {

@@ -318,7 +318,7 @@ void OutputTest::plotsRecordAndExport() {
   const QStringList lines = readLines(path);
   QCOMPARE(static_cast<std::size_t>(lines.size()), recorded + 1);
   QVERIFY(lines.front().startsWith(QString::fromStdString(poseCsvHeader())));
-  QVERIFY(lines.front().contains(QStringLiteral("truth_Tz_mm")));
+  QVERIFY(lines.front().contains(QStringLiteral("true_Tz_mm")));
   QVERIFY(!w.posePlots()->exportCsv(scratchDir(QStringLiteral("plots2")) + QStringLiteral("/no/dir/x.csv"), error));
   QVERIFY(!error.isEmpty());
 }

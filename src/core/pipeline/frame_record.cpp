@@ -1,0 +1,176 @@
+#include "core/pipeline/frame_record.h"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "core/common/pose_csv.h"
+
+namespace imagepro {
+
+namespace {
+
+FieldValue none() { return {}; }
+FieldValue number(double v) { return {FieldValue::Kind::Number, v, {}}; }
+FieldValue text(std::string t) { return {FieldValue::Kind::Text, 0.0, std::move(t)}; }
+
+FieldValue frameLabelOf(const FrameResult& r, int) { return text(frameLabel(r)); }
+FieldValue frameIndexOf(const FrameResult& r, int) { return number(static_cast<double>(r.index)); }
+FieldValue statusOf(const FrameResult& r, int) { return text(std::string(statusName(r.status))); }
+FieldValue poseOf(const FrameResult& r, int k) {
+  return ok(r.status) && r.pose ? number(poseColumnValues(*r.pose)[static_cast<std::size_t>(k)]) : none();
+}
+FieldValue truthOf(const FrameResult& r, int k) {
+  return r.truth ? number(poseColumnValues(*r.truth)[static_cast<std::size_t>(k)]) : none();
+}
+FieldValue timestampOf(const FrameResult& r, int) { return number(r.timestamp_s); }
+FieldValue rectSide(const cv::Rect& box, int k) {
+  if (box.empty()) return none();
+  const std::array<int, 4> sides{box.x, box.y, box.width, box.height};
+  return number(sides[static_cast<std::size_t>(k)]);
+}
+FieldValue searchOf(const FrameResult& r, int k) { return rectSide(r.search_region, k); }
+FieldValue detectedOf(const FrameResult& r, int k) { return rectSide(r.detected_region, k); }
+FieldValue stageTimeOf(const FrameResult& r, int s) { return number(r.times.us[static_cast<std::size_t>(s)]); }
+FieldValue rimSeenOf(const FrameResult& r, int) { return r.rim_seen > 0.0 ? number(r.rim_seen) : none(); }
+FieldValue lensInverseOf(const FrameResult& r, int) {
+  return r.reached == ApplicationLevel::Reconstruction ? text(std::string(lensInverseName(r.lens_inverse))) : none();
+}
+FieldValue nameOf(const FrameResult& r, int) { return r.name.empty() ? none() : text(r.name); }
+
+constexpr std::uint16_t kCsvAndJson = kDataOutCsv | kReconstructCsv | kReconstructJson;
+constexpr std::uint16_t kEveryOutput = kCsvAndJson | kStreamJson;
+
+std::vector<FrameField> buildFields() {
+  // Names that are built (a truth column, a stage's time) live here, for the views below.
+  static const std::array<std::string, 6> truthNames = [] {
+    std::array<std::string, 6> names;
+    for (std::size_t k = 0; k < 6; ++k) names[k] = "true_" + std::string(kPoseColumnNames[k]);
+    return names;
+  }();
+  static const std::array<std::string, kStageCount> stageNames = [] {
+    std::array<std::string, kStageCount> names;
+    for (std::size_t s = 0; s < kStageCount; ++s) names[s] = std::string(stageName(static_cast<Stage>(s))) + "_us";
+    return names;
+  }();
+  std::vector<FrameField> f;
+  f.push_back({"frame", "", "", "the file name for file input, else the frame's index", 0, kCsvAndJson, frameLabelOf});
+  f.push_back({"frame", "", "", "the frame's index", 0, kStreamJson, frameIndexOf});
+  f.push_back({"status", "", "", "ok, or the name of the first stage's failure", 0, kEveryOutput, statusOf});
+  for (int k = 0; k < 6; ++k)
+    f.push_back({kPoseColumnNames[static_cast<std::size_t>(k)], k < 3 ? "deg" : "mm", "",
+                 "the pose (docs/conventions.md); none unless the status is ok", 6, kEveryOutput, poseOf, k});
+  for (int k = 0; k < 6; ++k)
+    f.push_back({truthNames[static_cast<std::size_t>(k)], k < 3 ? "deg" : "mm", "", "the ground-truth pose (virtual frames)",
+                 6, kTruthCsv, truthOf, k});
+  f.push_back({"timestamp_s", "s", "", "the frame's time", 6, kDataOutCsv | kStreamJson | kPython, timestampOf});
+  static constexpr std::array<std::string_view, 4> kSearch{"search_x", "search_y", "search_w", "search_h"};
+  static constexpr std::array<std::string_view, 4> kDetected{"target_x", "target_y", "target_w", "target_h"};
+  for (int k = 0; k < 4; ++k)
+    f.push_back({kSearch[static_cast<std::size_t>(k)], "px", "", "the searched region (thesis: green)", 0, kDataOutCsv,
+                 searchOf, k});
+  for (int k = 0; k < 4; ++k)
+    f.push_back({kDetected[static_cast<std::size_t>(k)], "px", "", "the target's box (thesis: blue)", 0, kDataOutCsv,
+                 detectedOf, k});
+  for (int s = 0; s < static_cast<int>(kStageCount); ++s)
+    f.push_back({stageNames[static_cast<std::size_t>(s)], "us", "", "the stage's wall time", 1, kDataOutCsv, stageTimeOf, s});
+  f.push_back({"rim_seen", "", "Rim seen",
+               "the share of the rim the pose was fitted to (0..1; less where an occluder hides part of it), "
+               "none without a fitted rim",
+               3, kEveryOutput | kPython | kResultsText, rimSeenOf});
+  f.push_back({"lens_inverse", "", "Lens",
+               "which inverse of the lens model corrected the features: none, taylor, exact, exact-wide-lens; "
+               "none before the reconstruction stage",
+               0, kReconstructJson | kPython | kResultsText, lensInverseOf});
+  f.push_back({"name", "", "", "the file name, for file input", 0, kStreamJson, nameOf});
+  return f;
+}
+
+std::string fixed(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+}  // namespace
+
+std::span<const FrameField> frameFields() {
+  static const std::vector<FrameField> fields = buildFields();
+  return fields;
+}
+
+std::string fieldCsv(const FrameField& field, const FieldValue& value) {
+  switch (value.kind) {
+    case FieldValue::Kind::None: return {};
+    case FieldValue::Kind::Number: return fixed(value.number, field.decimals);
+    case FieldValue::Kind::Text: return csvField(value.text);
+  }
+  return {};
+}
+
+std::string fieldJson(const FrameField& field, const FieldValue& value) {
+  switch (value.kind) {
+    case FieldValue::Kind::None: return "null";
+    // JSON has no NaN or infinity: such a value is null, never invalid JSON.
+    case FieldValue::Kind::Number: return std::isfinite(value.number) ? fixed(value.number, field.decimals) : "null";
+    case FieldValue::Kind::Text:
+      // The library escapes it; bytes that are not UTF-8 become U+FFFD.
+      return nlohmann::json(value.text).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  }
+  return "null";
+}
+
+std::string recordCsvHeader(std::uint16_t output) {
+  std::string header;
+  for (const FrameField& f : frameFields()) {
+    if (!(f.outputs & output)) continue;
+    if (!header.empty()) header += ',';
+    header += f.name;
+  }
+  return header;
+}
+
+std::string recordCsvRow(const FrameResult& result, std::uint16_t output) {
+  std::string row;
+  bool first = true;
+  for (const FrameField& f : frameFields()) {
+    if (!(f.outputs & output)) continue;
+    if (!first) row += ',';
+    first = false;
+    row += fieldCsv(f, f.value(result, f.arg));
+  }
+  return row;
+}
+
+std::string recordJsonMembers(const FrameResult& result, FrameOutput output) {
+  std::string members;
+  for (const FrameField& f : frameFields()) {
+    if (!(f.outputs & output)) continue;
+    const FieldValue v = f.value(result, f.arg);
+    if (v.kind == FieldValue::Kind::None && output == kReconstructJson) continue;
+    if (!members.empty()) members += ',';
+    members += '"';
+    members += f.name;
+    members += "\":";
+    members += fieldJson(f, v);
+  }
+  return members;
+}
+
+std::string poseJsonMembers(const Pose* pose) {
+  std::string members;
+  const auto values = pose ? poseColumnValues(*pose) : std::array<double, 6>{};
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    if (k) members += ',';
+    members += '"';
+    members += kPoseColumnNames[k];
+    members += "\":";
+    members += pose && std::isfinite(values[k]) ? fixed(values[k], 6) : std::string("null");
+  }
+  return members;
+}
+
+}  // namespace imagepro
