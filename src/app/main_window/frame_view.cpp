@@ -47,6 +47,13 @@ void FrameView::setPacket(DisplayPacketPtr packet) {
   update();
 }
 
+void FrameView::clear(const QString& message) {
+  packet_.reset();
+  last_painted_ = nullptr;
+  message_ = message;
+  update();
+}
+
 QSize FrameView::imageSize() const {
   if (!packet_) return {};
   const cv::Size s = packet_->result.image_size;
@@ -81,7 +88,8 @@ void FrameView::paintEvent(QPaintEvent*) {
   painter.fillRect(rect(), QColor(32, 34, 38));
   if (!packet_) {
     painter.setPen(QColor(180, 180, 180));
-    painter.drawText(rect(), Qt::AlignCenter, tr("No frame yet: choose a source and press Start, or open a file"));
+    painter.drawText(rect().adjusted(12, 12, -12, -12), Qt::AlignCenter | Qt::TextWordWrap,
+                     message_.isEmpty() ? tr("No frame yet: choose a source and press Start, or open a file") : message_);
     return;
   }
   const DisplayPacket& p = *packet_;

@@ -20,6 +20,9 @@ class FrameView : public QWidget {
   explicit FrameView(QWidget* parent = nullptr);
 
   void setPacket(DisplayPacketPtr packet);
+  // No frame: the view is empty but for `message` (what to do to get one).
+  void clear(const QString& message);
+  QString message() const { return message_; }
   const DisplayPacketPtr& packet() const { return packet_; }
 
   double zoom() const { return zoom_; }  // screen pixels per image pixel
@@ -52,6 +55,7 @@ class FrameView : public QWidget {
   QSize imageSize() const;
 
   DisplayPacketPtr packet_;
+  QString message_;
   const DisplayPacket* last_painted_ = nullptr;  // repaints of the same packet do not count
   bool fit_ = true;       // keep the frame fitted to the view until the user zooms or pans
   double zoom_ = 1.0;

@@ -1,9 +1,12 @@
 // Each appendix A panel's controls change the options the worker thread runs with.
+#include <QApplication>
 #include <QCheckBox>
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QScrollBar>
+#include <QWheelEvent>
 #include <QSpinBox>
 #include <QTest>
 
@@ -55,6 +58,55 @@ void PanelTest::thresholdPanel() {
   QVERIFY(waitForApplied(w, [](const Settings& s) { return s.pipeline.threshold.method == ThresholdMethod::AtOrig; }));
   // The first thresholding has no by-pass: None is a re-thresholding choice only.
   QCOMPARE(method->findData(static_cast<int>(ThresholdMethod::None)), -1);
+}
+
+namespace {
+
+// One notch of the mouse wheel, turned towards the user (down the page), over `widget`.
+bool wheelDown(QWidget* widget) {
+  const QPointF at(widget->width() / 2.0, widget->height() / 2.0);
+  QWheelEvent wheel(at, widget->mapToGlobal(at), QPoint(), QPoint(0, -120), Qt::NoButton, Qt::NoModifier,
+                    Qt::NoScrollPhase, false);
+  return QApplication::sendEvent(widget, &wheel);
+}
+
+}  // namespace
+
+// Scrolling the control panel with the wheel scrolls it, whatever passes under the
+// pointer: the lists and number fields keep their values until the user has focused one.
+void PanelTest::wheelScrollsThePanelNotItsValues() {
+  MainWindow& w = *window_;
+  w.resize(1200, 700);  // the panel is taller than its dock: it scrolls
+  QTest::qWait(50);
+  auto* panel = find<ControlPanel>(w, "controlPanel");
+  QScrollBar* scroll = panel->verticalScrollBar();
+  QVERIFY(scroll->maximum() > 0);
+  auto* rule = find<QComboBox>(w, "ellipseAcceptRule");
+  auto* margin = find<QSpinBox>(w, "cropMargin");
+  QVERIFY(rule && margin);
+  const Settings before = w.settings();
+  const int rule_index = rule->currentIndex();
+  const int margin_value = margin->value();
+  for (QWidget* widget : std::initializer_list<QWidget*>{rule, margin}) {
+    QVERIFY(!widget->hasFocus());
+    QCOMPARE(widget->focusPolicy(), Qt::StrongFocus);  // the wheel does not focus it either
+    const int at = scroll->value();
+    wheelDown(widget);
+    QVERIFY2(scroll->value() > at, qPrintable(widget->objectName()));
+  }
+  QCOMPARE(rule->currentIndex(), rule_index);
+  QCOMPARE(margin->value(), margin_value);
+  QTest::qWait(50);
+  QCOMPARE(w.settings().pipeline.ellipse.accept_rule, before.pipeline.ellipse.accept_rule);
+  QCOMPARE(w.settings().pipeline.reconstruction.crop_margin_px, before.pipeline.reconstruction.crop_margin_px);
+
+  // Focused (clicked or tabbed to), a field takes the wheel as usual.
+  margin->setFocus();
+  QTRY_VERIFY(margin->hasFocus());
+  const int at = scroll->value();
+  wheelDown(margin);
+  QCOMPARE(margin->value(), margin_value - 1);
+  QCOMPARE(scroll->value(), at);
 }
 
 void PanelTest::edgeAndConnectivityPanels() {
