@@ -75,11 +75,11 @@ bool waitForApplied(MainWindow& window, const std::function<bool(const Settings&
   return false;
 }
 
-void answerFileDialog(FileDialogAnswer& answer, const QString& name) {
+void answerFileDialog(FileDialogAnswer& answer, const QString& name, int wait_ms) {
   answer = {};
-  QTimer::singleShot(0, qApp, [&answer, name] {
+  QTimer::singleShot(0, qApp, [&answer, name, wait_ms] {
     QFileDialog* dialog = nullptr;
-    for (int i = 0; i < 500 && !dialog; ++i) {
+    for (int i = 0; i < wait_ms / 10 && !dialog; ++i) {
       dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
       if (!dialog) QTest::qWait(10);
     }

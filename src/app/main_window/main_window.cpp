@@ -231,6 +231,8 @@ void MainWindow::connectWorker() {
   connect(worker_, &Worker::warningOccurred, this,
           [this](const QString& message) { statusBar()->showMessage(tr("Warning: %1").arg(message), 15000); });
   connect(worker_, &Worker::dataOutChanged, this, [this](const QString& path) {
+    // Said, so that "writing to" does not stay in the status bar after it stopped.
+    if (path.isEmpty() && !data_out_path_.isEmpty()) showInfo(tr("Data Out stopped: %1 closed").arg(data_out_path_));
     data_out_path_ = path;
     control_panel_->outputPanel()->setDataOutPath(path);
     if (data_out_action_) data_out_action_->setChecked(!path.isEmpty());

@@ -317,10 +317,11 @@ void OutputTest::dataOutTogglesWithCtrlD() {
   // Ctrl+D while writing: off, without a dialog (one would be cancelled and noted here).
   w.activateWindow();  // back from the dialog
   QVERIFY(QTest::qWaitForWindowActive(&w));
-  answerFileDialog(answer);
+  answerFileDialog(answer, {}, 1000);
   QTest::keyClick(&w, Qt::Key_D, Qt::ControlModifier);
   QTRY_VERIFY_WITH_TIMEOUT(w.dataOutPath().isEmpty(), 5000);
   QVERIFY(!indicator->isVisible());
+  QCOMPARE(w.statusBar()->currentMessage(), QStringLiteral("Data Out stopped: %1 closed").arg(path));
   QVERIFY(!w.findChild<QAction*>(QStringLiteral("dataOutAction"))->isChecked());
   QVERIFY(!w.controlPanel()->outputPanel()->dataOutBox()->isChecked());
   const int rows = readLines(path).size();
