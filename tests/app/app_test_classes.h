@@ -50,6 +50,7 @@ class VirtualTest : public QObject {
   void keysMoveTheTarget();
   void keysInFieldsDoNotMoveTheTarget();
   void guiStaysResponsiveAtFullSpeed();
+  void searchedRegionIsWholeBelowTheEllipseStage();
   void missingCameraShowsAnError();
   void constantVelocityFromTheSettingsDialog();
  private:
