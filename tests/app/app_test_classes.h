@@ -74,6 +74,8 @@ class FileTest : public QObject {
   void dialogsStartWhereTheUserLastWas();
   void droppedFilesAreOpenedAndRemembered();
   void samplesOpenFromTheMenu();
+  void numbersSitBesideTheTarget();
+  void longStatusIsWrappedNotCut();
   void resultsShowBothPosesOfADoubt();
  private:
   std::unique_ptr<MainWindow> window_;

@@ -9,6 +9,8 @@
 #include <QPointF>
 #include <QWidget>
 
+#include <vector>
+
 #include "app/worker/display_packet.h"
 
 namespace imagepro::app {
@@ -34,6 +36,15 @@ class FrameView : public QWidget {
   QSize sizeHint() const override { return {660, 500}; }
   // The live calibration check's line over the frame (empty when the check is off).
   QString calibrationCheckText() const;
+  // Each target's detection numbers (fit error E, or Bennett's S, Q, Y) and where they are
+  // drawn, in the view's coordinates: beside the target, never over it.
+  struct NumberLabel {
+    QString text;
+    QRectF box;
+  };
+  std::vector<NumberLabel> numberLabels() const;
+  // The target's ellipse's bounding box in the view's coordinates.
+  QRectF targetScreenBox(const TargetSummary& target) const;
 
  signals:
   void painted();  // a new packet has been drawn (the worker may send the next one)
@@ -52,6 +63,7 @@ class FrameView : public QWidget {
   void paintNumbers(QPainter& painter) const;
   void paintCalibrationCheck(QPainter& painter) const;
   QPointF toScreen(QPointF image_point) const;
+  QFont numbersFont() const;
   QSize imageSize() const;
 
   DisplayPacketPtr packet_;

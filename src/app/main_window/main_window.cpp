@@ -99,8 +99,9 @@ void MainWindow::buildResultsArea() {
   auto* text_scroll = new QScrollArea;
   text_scroll->setWidget(results_text_);
   text_scroll->setWidgetResizable(true);
-  // Wide enough for the longest line of the results text (the pose lines).
-  text_scroll->setMinimumWidth(QFontMetrics(results_text_->font()).horizontalAdvance(QString(44, QLatin1Char('0'))) + 30);
+  // Wide enough for the longest line of the results text.
+  text_scroll->setMinimumWidth(
+      QFontMetrics(results_text_->font()).horizontalAdvance(QString(kResultsColumns, QLatin1Char('0'))) + 30);
 
   results_area_ = new QWidget;
   results_area_->setObjectName(QStringLiteral("resultsArea"));

@@ -350,6 +350,56 @@ void FileTest::samplesOpenFromTheMenu() {
   QVERIFY(w.lastError().isEmpty());
 }
 
+// The detection's numbers are drawn beside the target, not over its spots and rim, for
+// the direct fit's E and for Bennett's wider S, Q, Y alike.
+void FileTest::numbersSitBesideTheTarget() {
+  MainWindow& w = *window_;
+  w.resize(1200, 800);
+  w.openPaths({kSamples + QStringLiteral("sample01_facing.png")});
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample01_facing.png" && r.pose; }));
+  for (EllipseMethod method : {EllipseMethod::DirectFit, EllipseMethod::Bennett}) {
+    QVERIFY(choose(w.findChild<QComboBox*>(QStringLiteral("ellipseMethod")), method));
+    QVERIFY(waitForApplied(w, [method](const Settings& s) { return s.pipeline.ellipse.method == method; }));
+    QTRY_VERIFY(w.frameView()->packet()->ellipse_method == method && !w.frameView()->packet()->result.targets.empty());
+    const FrameView& view = *w.frameView();
+    const auto labels = view.numberLabels();
+    const auto& targets = view.packet()->result.targets;
+    QCOMPARE(labels.size(), targets.size());
+    QVERIFY(labels[0].text.startsWith(method == EllipseMethod::Bennett ? QStringLiteral("S ") : QStringLiteral("E ")));
+    const QRectF target = view.targetScreenBox(targets[0]);
+    QVERIFY(target.width() > 20.0);  // the disk as shown, not a point
+    QVERIFY2(!labels[0].box.intersects(target), qPrintable(labels[0].text));
+    QVERIFY(QRectF(view.rect()).contains(labels[0].box));
+    // Next to it: centred under it, a few pixels away.
+    QVERIFY(std::abs(labels[0].box.center().x() - target.center().x()) < 1.0);
+    QVERIFY(labels[0].box.top() - target.bottom() < 10.0);
+  }
+}
+
+// A status in words longer than the results column is broken over lines, whole: the
+// text beside the frame cuts nothing off.
+void FileTest::longStatusIsWrappedNotCut() {
+  MainWindow& w = *window_;
+  const QString dir = scratchDir(QStringLiteral("truncated"));
+  QFile whole(kSamples + QStringLiteral("sample01_facing.png"));
+  QVERIFY(whole.open(QIODevice::ReadOnly));
+  QFile cut(dir + QStringLiteral("/cut.png"));
+  QVERIFY(cut.open(QIODevice::WriteOnly));
+  cut.write(whole.read(whole.size() / 2));
+  cut.close();
+  w.openPaths({cut.fileName()});
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.status == Status::FileTruncated; }));
+  QTRY_VERIFY(w.resultsText().startsWith(QStringLiteral("Status    FileTruncated:")));
+  const QStringList lines = w.resultsText().split(QLatin1Char('\n'));
+  for (const QString& line : lines) QVERIFY2(line.size() <= kResultsColumns, qPrintable(line));
+  // Every word of the message is there, in order, the later lines under the first's value.
+  QString joined;
+  for (const QString& line : lines.mid(0, 4)) joined += line.trimmed() + QLatin1Char(' ');
+  QVERIFY2(joined.simplified().contains(QString::fromUtf8(statusMessage(Status::FileTruncated).data())),
+           qPrintable(joined));
+  QVERIFY(lines[1].startsWith(QString(10, QLatin1Char(' '))));
+}
+
 // The results text of a frame whose spots could not tell the rim's two circles apart: an
 // ok pose halfway between them, or AmbiguousPose without one; both circles are listed.
 void FileTest::resultsShowBothPosesOfADoubt() {
