@@ -146,6 +146,8 @@ class CalibrationWizardTest : public QObject {
   void init();
   void cleanup();
   void recoversTheLensFromVirtualPatternImages();
+  void aDistortionFreeLensIsNotDrawnAsOne();
+  void quittingAsksBeforeLosingTheCalibration();
   void problemsAreNamedPerImageAndForTheRun();
   void aPatternTooSmallForTheImageIsRefused();
   void captureTakesTheRunningSourcesFrame();

@@ -396,6 +396,10 @@ void MainWindow::restoreLayout() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
+  if (hasUnsavedCalibration() && !mayLoseCalibration()) {
+    event->ignore();
+    return;
+  }
   QSettings store;
   store.setValue(QStringLiteral("window/geometry"), saveGeometry());
   store.setValue(QStringLiteral("window/state"), saveState());

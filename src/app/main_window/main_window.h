@@ -7,6 +7,9 @@
 #include <QMainWindow>
 #include <QThread>
 
+#include <optional>
+#include <utility>
+
 #include "app/worker/display_packet.h"
 #include "app/worker/source_kind.h"
 #include "core/pipeline/data_out.h"
@@ -57,6 +60,13 @@ class MainWindow : public QMainWindow {
   bool frozenForScreenshot() const { return frozen_for_screenshot_; }
   // False (the reason shown) for a name that is no CSV text file's: Data Out writes CSV,
   // to a name ending in .csv or .txt; a name without an extension gets .csv.
+  // A calibration set and in use (the wizard's Set and Use, an imported camera, Set d0):
+  // quitting asks to save the settings while the source in use's camera still has it and
+  // it has not been saved since (in a settings file, or as the wizard's calibration file).
+  void calibrationInUse();
+  void calibrationSaved(const Settings& saved);  // clears it when `saved` holds that camera
+  bool hasUnsavedCalibration() const;
+
   bool startDataOut(const QString& path, ExistingFile existing, bool replace);
   void stopDataOut();
   // Ctrl+D: Data Out off while it writes, else the file dialog that switches it on.
@@ -115,6 +125,8 @@ class MainWindow : public QMainWindow {
   void dataOutDialog(bool on);
   void settingsDialog();
   void showKeys();
+  // Asks whether to save an unsaved calibration before quitting: true to quit.
+  bool mayLoseCalibration();
 
   Settings settings_;
   SettingsBinder* binder_;
@@ -148,6 +160,7 @@ class MainWindow : public QMainWindow {
   std::int64_t packets_shown_ = 0;
   QAction* freeze_action_ = nullptr;
   bool frozen_for_screenshot_ = false;
+  std::optional<std::pair<SourceKind, CameraModel>> unsaved_calibration_;
 };
 
 }  // namespace imagepro::app

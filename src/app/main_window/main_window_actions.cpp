@@ -178,8 +178,52 @@ bool MainWindow::saveSettingsFile(const QString& path) {
     showError(tr("Settings not saved: %1").arg(QString::fromStdString(error)));
     return false;
   }
+  calibrationSaved(settings_);
   showInfo(tr("Settings saved to %1").arg(path));
   return true;
+}
+
+namespace {
+
+bool sameCamera(const CameraModel& a, const CameraModel& b) {
+  const Distortion &d = a.distortion, &e = b.distortion;
+  return a.width == b.width && a.height == b.height && a.pixel_size_mm == b.pixel_size_mm &&
+         a.image_plane_distance_mm == b.image_plane_distance_mm && a.principal_point_px == b.principal_point_px &&
+         d.k1 == e.k1 && d.k2 == e.k2 && d.p1 == e.p1 && d.p2 == e.p2;
+}
+
+}  // namespace
+
+void MainWindow::calibrationInUse() { unsaved_calibration_.emplace(settings_.source, settings_.camera()); }
+
+void MainWindow::calibrationSaved(const Settings& saved) {
+  if (unsaved_calibration_ && sameCamera(saved.camera(unsaved_calibration_->first), unsaved_calibration_->second))
+    unsaved_calibration_.reset();
+}
+
+bool MainWindow::hasUnsavedCalibration() const {
+  // Replaced since (another file loaded, the defaults, an edit): nothing of it is left to lose.
+  return unsaved_calibration_ &&
+         sameCamera(settings_.camera(unsaved_calibration_->first), unsaved_calibration_->second);
+}
+
+bool MainWindow::mayLoseCalibration() {
+  QMessageBox ask(QMessageBox::Warning, tr("Unsaved calibration"),
+                  tr("The %1 source's camera has a calibration set and in use that has not been saved: quitting "
+                     "loses it. Save the settings first?")
+                      .arg(sourceKindLabel(unsaved_calibration_->first)),
+                  QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, this);
+  ask.setObjectName(QStringLiteral("unsavedCalibration"));
+  ask.setDefaultButton(QMessageBox::Save);
+  switch (ask.exec()) {
+    case QMessageBox::Save:
+      saveSettingsDialog();
+      return !hasUnsavedCalibration();  // saved: quit; the dialog cancelled or the save failed: stay
+    case QMessageBox::Discard:
+      return true;
+    default:
+      return false;
+  }
 }
 
 void MainWindow::saveSettingsDialog() {

@@ -286,6 +286,12 @@ void PanelTest::settingsDialog() {
   auto* dialog = w.findChild<SettingsDialog*>();
   QVERIFY(dialog);
   dialog->findChild<QDoubleSpinBox*>(QStringLiteral("targetRadius"))->setValue(42.5);
+  // The Target tab has the card's size too, as the manual says.
+  auto* card = dialog->findChild<QDoubleSpinBox*>(QStringLiteral("targetCardSize"));
+  QVERIFY(card);
+  QCOMPARE(card->property("settingKey").toString(), QStringLiteral("pattern.card_size_mm"));
+  QCOMPARE(card->value(), Settings{}.pattern.card_size_mm);
+  card->setValue(150.0);
   dialog->findChild<QDoubleSpinBox*>(QStringLiteral("cameraD0"))->setValue(12.0);
   dialog->findChild<QDoubleSpinBox*>(QStringLiteral("virtualKeyStepMm"))->setValue(7.5);
   auto* k1 = dialog->findChild<QLineEdit*>(QStringLiteral("distortionK1"));
@@ -297,7 +303,7 @@ void PanelTest::settingsDialog() {
   dialog->findChild<QDialogButtonBox*>()->button(QDialogButtonBox::Ok)->click();
   QVERIFY(waitForApplied(w, [](const Settings& s) {
     return s.target.radius_mm == 42.5 && s.camera().image_plane_distance_mm == 12.0 && s.virtual_scene.key_step_mm == 7.5 &&
-           s.camera().distortion.k1 == -2.05e-7;
+           s.camera().distortion.k1 == -2.05e-7 && s.pattern.card_size_mm == 150.0;
   }));
 }
 
