@@ -42,6 +42,21 @@ bool renderAll(CalibrationWizard& wizard) {
   return QTest::qWaitFor([&] { return !wizard.isAnalysing(); }, 30000);
 }
 
+// The wizard with its four virtual views rendered through `lens`, the settings' camera
+// then without distortion and correction: a calibration starts from none, and Set and
+// Use has something to change. False when the views were not analysed in time.
+bool renderThroughLens(MainWindow& w, CalibrationWizard& wizard, const Distortion& lens) {
+  Settings through = w.settings();
+  through.camera().distortion = lens;
+  w.setSettings(through);
+  if (!renderAll(wizard)) return false;
+  Settings plain = w.settings();
+  plain.camera().distortion = {};
+  plain.pipeline.reconstruction.distortion_correction = false;
+  w.setSettings(plain);
+  return true;
+}
+
 QAction* menuAction(MainWindow& w, const QString& text) {
   for (QAction* a : w.menuBar()->findChildren<QAction*>())
     if (a->text() == text) return a;
@@ -224,14 +239,8 @@ void CalibrationWizardTest::aDistortionFreeLensIsNotDrawnAsOne() {
 // since, it asks nothing.
 void CalibrationWizardTest::quittingAsksBeforeLosingTheCalibration() {
   MainWindow& w = *window_;
-  Settings lens = w.settings();
-  lens.camera().distortion = kThesisCameraDistortion;
-  w.setSettings(lens);
   CalibrationWizard& wizard = showCalibrationWizard(w);
-  QVERIFY(renderAll(wizard));
-  Settings plain = w.settings();
-  plain.camera().distortion = {};
-  w.setSettings(plain);
+  QVERIFY(renderThroughLens(w, wizard, kThesisCameraDistortion));
   QSignalSpy finished(&wizard, &CalibrationWizard::calibrationFinished);
   wizard.calibrate();
   QVERIFY(finished.wait(60000));
