@@ -358,7 +358,7 @@ void MainWindow::rememberDirectory(const QString& path) {
   if (path.isEmpty()) return;
   const QFileInfo info(path);
   last_dir_ = info.isDir() ? info.absoluteFilePath() : info.absolutePath();
-  QSettings().setValue(QStringLiteral("lastDirectory"), last_dir_);  // the next session's start
+  QSettings().setValue(QStringLiteral("lastDirectory"), last_dir_);  // where the next run starts too
 }
 
 QString MainWindow::dialogDirectory() const {
