@@ -2,8 +2,8 @@
 # ImagePro set-up: installs the Debian packages that are missing, configures and
 # builds, then either starts the application or runs the whole test suite.
 #
-#   tools/setup.sh run    build, then start ImagePro on the Virtual source
-#                         (without a display: a headless demo that prints poses)
+#   tools/setup.sh run    build only what it starts, then start ImagePro on the Virtual source
+#                         (without a display: imagepro-cli's headless demo, which prints poses)
 #   tools/setup.sh test   build, then run every test through ctest
 #   tools/setup.sh build  build only
 #   tools/setup.sh package  build what the Debian package holds, then the package itself:
@@ -49,9 +49,10 @@ packages=(
   libv4l-dev libapriltag-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   pybind11-dev python3-dev python3-numpy python3-pytest
-  opencv-doc
   help2man dpkg-dev file desktop-file-utils
 )
+# The photographs serve the tests only: run, which builds no test, goes without them.
+[ "$mode" = run ] || packages+=(opencv-doc)
 # libFuzzer comes with clang's runtime libraries.
 [ "$mode" = fuzz ] && packages+=(clang libclang-rt-14-dev libfuzzer-14-dev)
 
@@ -95,6 +96,13 @@ case "$mode" in
     targets=(--target imagepro_fuzz_targets)
     ;;
 esac
+# run builds only the program it starts: the window, or without a display the headless demo
+# (the same configuration as the other modes, so a later test or build reuses it).
+has_display=false
+if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then has_display=true; fi
+if [ "$mode" = run ]; then
+  if $has_display; then targets=(--target imagepro); else targets=(--target imagepro-cli); fi
+fi
 sanitize_tests="${SANITIZE_TESTS:-all}"
 # The sanitizer builds keep line numbers for their reports (-g1), for which ccache also
 # keys each object on its build folder by default; leaving the folder out lets a fresh
@@ -141,7 +149,7 @@ case "$mode" in
     ;;
   fuzz) echo "== fuzz targets in $build_dir/tests/fuzz (tools/fuzz.sh runs them)" ;;
   run)
-    if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
+    if $has_display; then
       exec "$build_dir/src/app/imagepro" --source virtual
     else
       echo "== no display: headless demo on the Virtual source (the GUI needs a display)"

@@ -5,9 +5,11 @@
 //            [--measure-responsiveness SECONDS]     (GUI stalls with the Virtual source unpaced: print, quit)
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QCoreApplication>
 #include <QTimer>
 
 #include <cstdio>
+#include <cstring>
 
 #include "app/worker/camera_arguments.h"
 #include "app/main_window/main_window.h"
@@ -15,46 +17,87 @@
 #include "app/worker/source_kind.h"
 #include "core/common/version.h"
 
-int main(int argc, char** argv) {
-  QApplication app(argc, argv);
-  QApplication::setOrganizationName(QStringLiteral("ImagePro"));
-  QApplication::setApplicationName(QStringLiteral("ImagePro"));
-  QApplication::setApplicationVersion(QString::fromLatin1(imagepro::kVersion));
+namespace {
 
+void nameApplication() {
+  QCoreApplication::setOrganizationName(QStringLiteral("ImagePro"));
+  QCoreApplication::setApplicationName(QStringLiteral("ImagePro"));
+  QCoreApplication::setApplicationVersion(QString::fromLatin1(imagepro::kVersion));
+}
+
+// --help and --version print and quit; they need no display, which QApplication would
+// insist on (without one it aborts).
+bool asksForHelpOrVersion(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--") == 0) break;
+    for (const char* option : {"-h", "--help", "-?", "--help-all", "-v", "--version"})
+      if (std::strcmp(argv[i], option) == 0) return true;
+  }
+  return false;
+}
+
+// Every option of the command line, for the help text and the run alike.
+struct Options {
+  QCommandLineOption source = QCommandLineOption(
+      {QStringLiteral("s"), QStringLiteral("source")}, QStringLiteral("Input source to start with: virtual, file or camera."),
+      QStringLiteral("kind"));
+  QCommandLineOption config = QCommandLineOption({QStringLiteral("c"), QStringLiteral("config")},
+                                                 QStringLiteral("Settings JSON file to load."), QStringLiteral("file"));
+  QCommandLineOption screenshot = QCommandLineOption(
+      QStringLiteral("screenshot"), QStringLiteral("Save a picture of the whole window to this PNG file, then quit."),
+      QStringLiteral("png"));
+  QCommandLineOption after =
+      QCommandLineOption(QStringLiteral("after"), QStringLiteral("Seconds to run before --screenshot (default 5)."),
+                         QStringLiteral("seconds"), QStringLiteral("5"));
+  QCommandLineOption measure = QCommandLineOption(
+      QStringLiteral("measure-responsiveness"),
+      QStringLiteral("Run the Virtual source unpaced for this many seconds while timing the GUI thread; print the "
+                     "stalls and the frames processed and shown, then quit."),
+      QStringLiteral("seconds"));
+  QCommandLineOption camera = QCommandLineOption(
+      QStringLiteral("camera"), QStringLiteral("Start the Camera source on this V4L2 device (e.g. /dev/video0)."),
+      QStringLiteral("device"));
+  QCommandLineOption size = QCommandLineOption(
+      QStringLiteral("size"), QStringLiteral("With --camera: the frame size to ask for, e.g. 640x480."),
+      QStringLiteral("WxH"));
+  QCommandLineOption fps = QCommandLineOption(
+      QStringLiteral("fps"), QStringLiteral("With --camera: the frame rate to ask for."), QStringLiteral("rate"));
+
+  void addTo(QCommandLineParser& parser) const {
+    parser.setApplicationDescription(
+        QStringLiteral("Real-time monocular 3D reconstruction of a secondary passive target."));
+    parser.addHelpOption();
+    parser.addVersionOption();
+    parser.addOption(source);
+    parser.addOption(camera);
+    parser.addOption(size);
+    parser.addOption(fps);
+    parser.addOption(measure);
+    parser.addOption(config);
+    parser.addOption(screenshot);
+    parser.addOption(after);
+    parser.addPositionalArgument(QStringLiteral("files"), QStringLiteral("Images or folders to process (File source)."),
+                                 QStringLiteral("[file|folder...]"));
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (asksForHelpOrVersion(argc, argv)) {
+    QCoreApplication app(argc, argv);
+    nameApplication();
+    QCommandLineParser parser;
+    Options().addTo(parser);
+    parser.process(app);  // prints the help or the version and exits with 0
+    return 0;
+  }
+  QApplication app(argc, argv);
+  nameApplication();
+  const Options options;
+  const auto& [source, config, screenshot, after, measure, camera, size, fps] = options;
   QCommandLineParser parser;
-  parser.setApplicationDescription(QStringLiteral("Real-time monocular 3D reconstruction of a secondary passive target."));
-  parser.addHelpOption();
-  parser.addVersionOption();
-  QCommandLineOption source({QStringLiteral("s"), QStringLiteral("source")},
-                            QStringLiteral("Input source to start with: virtual, file or camera."), QStringLiteral("kind"));
-  QCommandLineOption config({QStringLiteral("c"), QStringLiteral("config")}, QStringLiteral("Settings JSON file to load."),
-                            QStringLiteral("file"));
-  QCommandLineOption screenshot(QStringLiteral("screenshot"),
-                                QStringLiteral("Save a picture of the whole window to this PNG file, then quit."),
-                                QStringLiteral("png"));
-  QCommandLineOption after(QStringLiteral("after"), QStringLiteral("Seconds to run before --screenshot (default 5)."),
-                           QStringLiteral("seconds"), QStringLiteral("5"));
-  QCommandLineOption measure(QStringLiteral("measure-responsiveness"),
-                             QStringLiteral("Run the Virtual source unpaced for this many seconds while timing the GUI "
-                                            "thread; print the stalls and the frames processed and shown, then quit."),
-                             QStringLiteral("seconds"));
-  QCommandLineOption camera(QStringLiteral("camera"),
-                            QStringLiteral("Start the Camera source on this V4L2 device (e.g. /dev/video0)."),
-                            QStringLiteral("device"));
-  QCommandLineOption size(QStringLiteral("size"), QStringLiteral("With --camera: the frame size to ask for, e.g. 640x480."),
-                          QStringLiteral("WxH"));
-  QCommandLineOption fps(QStringLiteral("fps"), QStringLiteral("With --camera: the frame rate to ask for."),
-                         QStringLiteral("rate"));
-  parser.addOption(source);
-  parser.addOption(camera);
-  parser.addOption(size);
-  parser.addOption(fps);
-  parser.addOption(measure);
-  parser.addOption(config);
-  parser.addOption(screenshot);
-  parser.addOption(after);
-  parser.addPositionalArgument(QStringLiteral("files"), QStringLiteral("Images or folders to process (File source)."),
-                               QStringLiteral("[file|folder...]"));
+  options.addTo(parser);
   parser.process(app);
 
   using imagepro::SourceKind;
@@ -85,6 +128,9 @@ int main(int argc, char** argv) {
 
   imagepro::app::MainWindow window;
   window.show();
+  // The source first: a change of source dismisses the error banner, which must keep a
+  // bad settings file's error.
+  window.selectSource(kind);
   // A bad settings file is shown in the window; the defaults stay in force.
   if (parser.isSet(config)) window.loadSettingsFile(parser.value(config));
   if (parser.isSet(camera)) {  // over the settings file's camera_source (checked above)
@@ -94,7 +140,6 @@ int main(int argc, char** argv) {
                                         settings.camera_source, unused);
     window.setSettings(settings);
   }
-  window.selectSource(kind);
   if (parser.isSet(measure)) {
     bool seconds_ok = false;
     const double seconds = parser.value(measure).toDouble(&seconds_ok);

@@ -24,8 +24,9 @@ std::string cell(std::string_view text) {
   return out;
 }
 
-// One table per option enum, headed by the settings keys that take it: a generated
-// block of docs/user-manual.md (tools/regenerate-docs.sh).
+// One table per option enum, headed by the settings keys that take it (a key that takes
+// only some of its values names those it does not take): a generated block of
+// docs/user-manual.md (tools/regenerate-docs.sh).
 std::string methodsMarkdown() {
   std::vector<std::vector<const SettingKey*>> groups;
   for (const SettingKey& k : settingKeys()) {
@@ -43,10 +44,20 @@ std::string methodsMarkdown() {
                         [](const auto& g) { return g.front()->path.rfind("pipeline.", 0) == 0; });
   std::string md;
   for (const auto& g : groups) {
+    // The rows: the values of the key that takes the most of them, all of the enum's.
+    const SettingKey* widest = *std::max_element(
+        g.begin(), g.end(), [](const SettingKey* a, const SettingKey* b) { return a->choices.size() < b->choices.size(); });
     std::string keys;
-    for (const SettingKey* k : g) keys += (keys.empty() ? "`" : ", `") + k->path + "`";
+    for (const SettingKey* k : g) {
+      keys += (keys.empty() ? "`" : ", `") + k->path + "`";
+      std::string left_out;
+      for (const auto& c : widest->choices)
+        if (std::none_of(k->choices.begin(), k->choices.end(), [&c](const auto& own) { return own.key == c.key; }))
+          left_out += (left_out.empty() ? "`" : ", `") + std::string(c.key) + "`";
+      if (!left_out.empty()) keys += " (not " + left_out + ")";
+    }
     md += (md.empty() ? "" : "\n") + keys + "\n\n| name | key | what it is |\n| --- | --- | --- |\n";
-    for (const auto& c : g.front()->choices)
+    for (const auto& c : widest->choices)
       md += "| " + cell(c.label) + " | `" + std::string(c.key) + "` | " + cell(c.description) + " |\n";
   }
   return md;

@@ -23,6 +23,7 @@ class PanelTest : public QObject {
   void trackingPanel();
   void applicationPanel();
   void displayPanels();
+  void wheelScrollsThePanelNotItsValues();
   void settingsDialog();
   void listsComeFromTheEnumTables();
   void rangesComeFromTheSettingsTable();
@@ -49,6 +50,7 @@ class VirtualTest : public QObject {
   void keysMoveTheTarget();
   void keysInFieldsDoNotMoveTheTarget();
   void guiStaysResponsiveAtFullSpeed();
+  void searchedRegionIsWholeBelowTheEllipseStage();
   void missingCameraShowsAnError();
   void constantVelocityFromTheSettingsDialog();
  private:
@@ -63,12 +65,31 @@ class FileTest : public QObject {
   void cleanup();
   void fileIsProcessedAndParametersShown();
   void optionChangeReprocessesTheFile();
-  void folderIsPlayedInNaturalOrder();
+  void folderIsInNaturalOrder();
+  void folderIsSteppedWithKeysAndButtons();
+  void startPlaysTheRestOfTheImages();
   void listFilePlaysInItsOrder();
   void missingFileShowsAnError();
+  void recentFilesKeepOnlyWhatLoaded();
+  void dialogsStartWhereTheUserLastWas();
   void droppedFilesAreOpenedAndRemembered();
   void samplesOpenFromTheMenu();
+  void numbersSitBesideTheTarget();
+  void longStatusIsWrappedNotCut();
   void resultsShowBothPosesOfADoubt();
+ private:
+  std::unique_ptr<MainWindow> window_;
+};
+
+// A change of source: nothing of the one before stays; the source is always named.
+class SourceChangeTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void init();
+  void cleanup();
+  void eachSourceShowsOnlyItsOwnState();
+  void bannerGoesWhenALaterLoadSucceeds();
+  void titleNamesTheSourceDataOutAndStream();
  private:
   std::unique_ptr<MainWindow> window_;
 };
@@ -84,6 +105,8 @@ class OutputTest : public QObject {
   void screenshotFreezesProcessingWhileSaving();
   void dataOutWritesEveryFrame();
   void dataOutNeverOverwritesSilently();
+  void dataOutTogglesWithCtrlD();
+  void dataOutRefusesANameThatIsNotCsv();
   void streamFromTheDataOutPanel();
   void streamProblemIsNamedInTheStatusBar();
   void plotsRecordAndExport();
@@ -101,10 +124,18 @@ class SettingsFileTest : public QObject {
   void cleanup();
   void roundTrip();
   void malformedFileNamesTheKey();
+  void thresholdNoneIsRefusedByItsKey();
   void unreadableFileIsAnError();
   void windowLayoutIsRemembered();
  private:
   std::unique_ptr<MainWindow> window_;
+};
+
+// The imagepro program's own command line.
+class CommandLineTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void helpAndVersionNeedNoDisplay();
 };
 
 // The calibration wizard (thesis 4.6, appendix A): virtual pattern images, the run, Set and Use, errors;
@@ -115,6 +146,8 @@ class CalibrationWizardTest : public QObject {
   void init();
   void cleanup();
   void recoversTheLensFromVirtualPatternImages();
+  void aDistortionFreeLensIsNotDrawnAsOne();
+  void quittingAsksBeforeLosingTheCalibration();
   void problemsAreNamedPerImageAndForTheRun();
   void aPatternTooSmallForTheImageIsRefused();
   void captureTakesTheRunningSourcesFrame();

@@ -3,7 +3,10 @@
 #include <QCoreApplication>
 #include <QDir>
 #include <QElapsedTimer>
+#include <QFileDialog>
+#include <QLineEdit>
 #include <QTest>
+#include <QTimer>
 
 #include "app/main_window/frame_view.h"
 #include "app/worker/worker.h"
@@ -70,6 +73,28 @@ bool waitForApplied(MainWindow& window, const std::function<bool(const Settings&
     QTest::qWait(10);
   }
   return false;
+}
+
+void answerFileDialog(FileDialogAnswer& answer, const QString& name, int wait_ms) {
+  answer = {};
+  QTimer::singleShot(0, qApp, [&answer, name, wait_ms] {
+    QFileDialog* dialog = nullptr;
+    for (int i = 0; i < wait_ms / 10 && !dialog; ++i) {
+      dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
+      if (!dialog) QTest::qWait(10);
+    }
+    if (!dialog) return;
+    answer.seen = true;
+    answer.directory = dialog->directory().absolutePath();
+    if (name.isEmpty()) {
+      static_cast<QDialog*>(dialog)->reject();
+      return;
+    }
+    // The name typed in (selectFile keeps the suggested name here).
+    if (auto* edit = dialog->findChild<QLineEdit*>(QStringLiteral("fileNameEdit"))) edit->setText(name);
+    else dialog->selectFile(name);
+    static_cast<QDialog*>(dialog)->accept();  // public as QDialog's
+  });
 }
 
 }  // namespace imagepro::app::test

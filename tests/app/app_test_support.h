@@ -39,6 +39,15 @@ bool waitForFrame(MainWindow& window, const std::function<bool(const FrameResult
 // Until the worker runs with settings satisfying `pred`.
 bool waitForApplied(MainWindow& window, const std::function<bool(const Settings&)>& pred, int ms = 5000);
 
+// Answers the next modal file dialog as the user would: notes the folder it opened in,
+// then types `name` and accepts it, or with no name cancels it. Call before the action
+// that opens the dialog; `seen` stays false if no dialog came within `wait_ms`.
+struct FileDialogAnswer {
+  bool seen = false;
+  QString directory;
+};
+void answerFileDialog(FileDialogAnswer& answer, const QString& name = {}, int wait_ms = 5000);
+
 // Selects `value` in a combo box built from the enum's table, where it shows its
 // display name; false if absent.
 template <class E>

@@ -90,7 +90,10 @@ TEST(Cli, MethodListsComeFromTheEnumTables) {
   EXPECT_NE(render.out.find("constant-velocity  Constant velocity: "), std::string::npos) << render.out;
   const CliRun md = cli("settings --methods-markdown");
   EXPECT_EQ(md.exit_code, 0);
-  EXPECT_NE(md.out.find("`pipeline.threshold.method`, `pipeline.rethreshold.method`\n"), std::string::npos) << md.out;
+  // The frame's threshold takes every method but the re-threshold's by-pass.
+  EXPECT_NE(md.out.find("`pipeline.threshold.method` (not `none`), `pipeline.rethreshold.method`\n"), std::string::npos)
+      << md.out;
+  EXPECT_NE(md.out.find("| None | `none` | "), std::string::npos);
   EXPECT_NE(md.out.find("| AT-Mod | `at-mod` | The same minimum error criterion"), std::string::npos) << md.out;
   EXPECT_NE(md.out.find("| 8 points ORG | `8-points-org` | "), std::string::npos);
   EXPECT_EQ(cli("settings --methods-markdown --out x.json").exit_code, 2);

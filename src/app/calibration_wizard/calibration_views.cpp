@@ -130,7 +130,8 @@ void DistortionFieldView::setField(const CameraModel& camera, const Distortion& 
       longest = std::max(longest, d.norm());
     }
   // The longest arrow at most 90 % of a cell, lengthened by a round factor.
-  arrow_scale_ = longest > 1e-9 ? niceFloor(0.9 * std::min(step, row_step) / longest) : 0.0;
+  arrow_scale_ = largest_px_ >= kNegligiblePx && longest > 1e-9 ? niceFloor(0.9 * std::min(step, row_step) / longest)
+                                                                 : 0.0;
   update();
 }
 
@@ -176,7 +177,9 @@ void DistortionFieldView::paintEvent(QPaintEvent*) {
     p.drawPath(tip);
   }
   p.setPen(QColor(60, 60, 60));
-  const QString scale = arrow_scale_ > 0.0 ? tr("arrows x%1").arg(arrow_scale_) : tr("no displacement");
+  const QString scale = arrow_scale_ > 0.0   ? tr("arrows x%1").arg(arrow_scale_)
+                        : largest_px_ > 0.0 ? tr("no distortion to speak of (below %1 px)").arg(kNegligiblePx)
+                                            : tr("no displacement");
   p.drawText(QRectF(frame.left(), frame.bottom() + 2, frame.width(), text_height), Qt::AlignLeft | Qt::AlignTop,
              scale + tr(";  + principal point"));
 }

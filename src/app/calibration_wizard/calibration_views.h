@@ -57,6 +57,10 @@ class DistortionFieldView : public QWidget {
 
  public:
   static constexpr int kColumns = 16;  // arrows across the image; rows keep them square
+  // A field whose largest displacement is below this is no distortion to speak of (less
+  // than the sub-pixel rim resolves): it is not drawn, since magnified thousands of times
+  // a distortion-free fit's residue would look like a real lens's field.
+  static constexpr double kNegligiblePx = 0.05;
 
   explicit DistortionFieldView(QWidget* parent = nullptr);
 
@@ -64,7 +68,8 @@ class DistortionFieldView : public QWidget {
 
   // Largest displacement over every pixel of the image, px.
   double largestDisplacementPx() const { return largest_px_; }
-  // Arrows are drawn this many times their displacement (0: nothing to draw).
+  // Arrows are drawn this many times their displacement (0: nothing to draw, or a
+  // negligible field).
   double arrowScale() const { return arrow_scale_; }
   QSize sizeHint() const override { return {400, 300}; }
 

@@ -265,6 +265,10 @@ void CalibrationWizard::showField() {
                    .arg(camera.width)
                    .arg(camera.height)
                    .arg(field_->arrowScale());
+  else if (field_->largestDisplacementPx() > 0.0)
+    caption += tr(" Largest displacement %1 px: no distortion to speak of (below %2 px), so no arrows are drawn.")
+                   .arg(field_->largestDisplacementPx(), 0, 'g', 2)
+                   .arg(DistortionFieldView::kNegligiblePx);
   else
     caption += tr(" No displacement.");
   field_caption_->setText(caption);
@@ -276,6 +280,7 @@ void CalibrationWizard::setAndUse() {
   next.camera().distortion = result_->distortion;
   next.pipeline.reconstruction.distortion_correction = true;
   window_.setSettings(next);
+  window_.calibrationInUse();
   setRunStatus(tr("Set and Use: the %1 source's camera now has %2, and distortion correction is on.")
                    .arg(sourceKindLabel(next.source), distortionText(result_->distortion)),
                false);
@@ -287,6 +292,7 @@ bool CalibrationWizard::saveCalibration(const QString& path) {
   calibrated.camera().distortion = result_->distortion;
   QString message;
   const bool saved = saveCameraSection(path, calibrated, message);
+  if (saved) window_.calibrationSaved(calibrated);
   setRunStatus(message, !saved);
   return saved;
 }

@@ -227,6 +227,7 @@ bool D0Dialog::setAndUse() {
   Settings next = window_.settings();
   next.camera().image_plane_distance_mm = s.mean_mm;
   window_.setSettings(next);
+  window_.calibrationInUse();
   summary_->setText(summaryText() + QLatin1Char(' ') + tr("The settings' camera now has d0 = %1 mm.").arg(s.mean_mm, 0, 'f', 6));
   return true;
 }

@@ -228,6 +228,7 @@ void IntrinsicsPage::setAndUse() {
   applyIntrinsics(*result_, next.camera());
   next.pipeline.reconstruction.distortion_correction = true;
   window_.setSettings(next);
+  window_.calibrationInUse();
   setRunStatus(tr("Set and Use: the %1 source's camera is now %2, with its distortion; distortion correction is on.")
                    .arg(sourceKindLabel(next.source), cameraText(next.camera())),
                false);
@@ -239,6 +240,7 @@ bool IntrinsicsPage::saveCalibration(const QString& path) {
   applyIntrinsics(*result_, calibrated.camera());
   QString message;
   const bool saved = saveCameraSection(path, calibrated, message);
+  if (saved) window_.calibrationSaved(calibrated);
   setRunStatus(message, !saved);
   return saved;
 }
@@ -269,6 +271,7 @@ bool IntrinsicsPage::importOpenCvCamera(const QString& path) {
   applyOpenCvCamera(camera, next.camera(), &fit_px);
   next.pipeline.reconstruction.distortion_correction = true;
   window_.setSettings(next);
+  window_.calibrationInUse();
   setRunStatus(tr("Imported %1: the settings' camera is now %2; its distortion in this project's model within %3 px "
                   "RMS of OpenCV's; distortion correction is on.")
                    .arg(QFileInfo(path).fileName(), cameraText(next.camera()))

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 #include "app/main_window/results_text.h"
 
@@ -47,6 +48,13 @@ void FrameView::setPacket(DisplayPacketPtr packet) {
   update();
 }
 
+void FrameView::clear(const QString& message) {
+  packet_.reset();
+  last_painted_ = nullptr;
+  message_ = message;
+  update();
+}
+
 QSize FrameView::imageSize() const {
   if (!packet_) return {};
   const cv::Size s = packet_->result.image_size;
@@ -81,7 +89,8 @@ void FrameView::paintEvent(QPaintEvent*) {
   painter.fillRect(rect(), QColor(32, 34, 38));
   if (!packet_) {
     painter.setPen(QColor(180, 180, 180));
-    painter.drawText(rect(), Qt::AlignCenter, tr("No frame yet: choose a source and press Start, or open a file"));
+    painter.drawText(rect().adjusted(12, 12, -12, -12), Qt::AlignCenter | Qt::TextWordWrap,
+                     message_.isEmpty() ? tr("No frame yet: choose a source and press Start, or open a file") : message_);
     return;
   }
   const DisplayPacket& p = *packet_;
@@ -209,9 +218,7 @@ QString FrameView::calibrationCheckText() const {
 void FrameView::paintNumbers(QPainter& painter) const {
   // Drawn in screen space so they stay readable at every zoom.
   const DisplayPacket& p = *packet_;
-  QFont font = painter.font();
-  font.setPointSizeF(std::max(8.0, font.pointSizeF()));
-  font.setBold(true);
+  const QFont font = numbersFont();
   painter.setFont(font);
   if (const QString check = calibrationCheckText(); !check.isEmpty()) {
     const QFontMetrics metrics(font);
@@ -224,24 +231,58 @@ void FrameView::paintNumbers(QPainter& painter) const {
     painter.setPen(ok(p.calibration.status) ? kFoundSpots : QColor(255, 120, 120));
     painter.drawText(box, Qt::AlignCenter, check);
   }
-  for (const TargetSummary& t : p.result.targets) {
-    const QString text = p.ellipse_method == EllipseMethod::Bennett
-                             ? tr("S %1  Q %2  Y %3")
-                                   .arg(t.bennett_score, 0, 'f', 0)
-                                   .arg(t.bennett_quality, 0, 'f', 0)
-                                   .arg(t.bennett_symmetry, 0, 'f', 2)
-                             : tr("E %1").arg(t.fit_error, 0, 'g', 3);
-    const QPointF c = toScreen(QPointF(t.ellipse.cx + 0.5, t.ellipse.cy + 0.5));
-    const QFontMetrics metrics(font);
-    QRectF box = metrics.boundingRect(text);
-    box.adjust(-4, -1, 4, 1);
-    box.moveCenter(c + QPointF(0, metrics.height()));  // just below the centre spot
+  const std::vector<NumberLabel> labels = numberLabels();
+  for (const NumberLabel& label : labels) {
     painter.setPen(Qt::NoPen);
     painter.setBrush(QColor(0, 0, 0, 150));
-    painter.drawRoundedRect(box, 3, 3);
+    painter.drawRoundedRect(label.box, 3, 3);
     painter.setPen(QColor(255, 255, 120));
-    painter.drawText(box, Qt::AlignCenter, text);
+    painter.drawText(label.box, Qt::AlignCenter, label.text);
   }
+}
+
+QFont FrameView::numbersFont() const {
+  QFont f = font();
+  f.setPointSizeF(std::max(8.0, f.pointSizeF()));
+  f.setBold(true);
+  return f;
+}
+
+QRectF FrameView::targetScreenBox(const TargetSummary& t) const {
+  // The rotated ellipse's axis-aligned half extents.
+  const double th = t.ellipse.angle_deg * std::numbers::pi / 180.0;
+  const double c = std::cos(th), s = std::sin(th);
+  const double hx = std::hypot(t.ellipse.a * c, t.ellipse.b * s);
+  const double hy = std::hypot(t.ellipse.a * s, t.ellipse.b * c);
+  const QPointF centre(t.ellipse.cx + 0.5, t.ellipse.cy + 0.5);
+  return QRectF(toScreen(centre - QPointF(hx, hy)), toScreen(centre + QPointF(hx, hy)));
+}
+
+std::vector<FrameView::NumberLabel> FrameView::numberLabels() const {
+  std::vector<NumberLabel> labels;
+  if (!packet_) return labels;
+  const DisplayPacket& p = *packet_;
+  const QFontMetrics metrics(numbersFont());
+  for (const TargetSummary& t : p.result.targets) {
+    NumberLabel label;
+    label.text = p.ellipse_method == EllipseMethod::Bennett ? tr("S %1  Q %2  Y %3")
+                                                                  .arg(t.bennett_score, 0, 'f', 0)
+                                                                  .arg(t.bennett_quality, 0, 'f', 0)
+                                                                  .arg(t.bennett_symmetry, 0, 'f', 2)
+                                                            : tr("E %1").arg(t.fit_error, 0, 'g', 3);
+    label.box = metrics.boundingRect(label.text);
+    label.box.adjust(-4, -1, 4, 1);
+    // Beside the target, not on it: the spots and the rim it measured stay in sight. Below
+    // the disk, or above it where the view ends; kept inside the view sideways.
+    const QRectF target = targetScreenBox(t);
+    const double gap = 4.0;
+    label.box.moveTop(target.bottom() + gap);
+    if (label.box.bottom() > height()) label.box.moveBottom(target.top() - gap);
+    label.box.moveLeft(std::clamp(target.center().x() - label.box.width() / 2.0, 0.0,
+                                  std::max(0.0, width() - label.box.width())));
+    labels.push_back(label);
+  }
+  return labels;
 }
 
 void FrameView::wheelEvent(QWheelEvent* event) {

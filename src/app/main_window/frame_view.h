@@ -9,6 +9,8 @@
 #include <QPointF>
 #include <QWidget>
 
+#include <vector>
+
 #include "app/worker/display_packet.h"
 
 namespace imagepro::app {
@@ -20,6 +22,9 @@ class FrameView : public QWidget {
   explicit FrameView(QWidget* parent = nullptr);
 
   void setPacket(DisplayPacketPtr packet);
+  // No frame: the view is empty but for `message` (what to do to get one).
+  void clear(const QString& message);
+  QString message() const { return message_; }
   const DisplayPacketPtr& packet() const { return packet_; }
 
   double zoom() const { return zoom_; }  // screen pixels per image pixel
@@ -31,6 +36,15 @@ class FrameView : public QWidget {
   QSize sizeHint() const override { return {660, 500}; }
   // The live calibration check's line over the frame (empty when the check is off).
   QString calibrationCheckText() const;
+  // Each target's detection numbers (fit error E, or Bennett's S, Q, Y) and where they are
+  // drawn, in the view's coordinates: beside the target, never over it.
+  struct NumberLabel {
+    QString text;
+    QRectF box;
+  };
+  std::vector<NumberLabel> numberLabels() const;
+  // The target's ellipse's bounding box in the view's coordinates.
+  QRectF targetScreenBox(const TargetSummary& target) const;
 
  signals:
   void painted();  // a new packet has been drawn (the worker may send the next one)
@@ -49,9 +63,11 @@ class FrameView : public QWidget {
   void paintNumbers(QPainter& painter) const;
   void paintCalibrationCheck(QPainter& painter) const;
   QPointF toScreen(QPointF image_point) const;
+  QFont numbersFont() const;
   QSize imageSize() const;
 
   DisplayPacketPtr packet_;
+  QString message_;
   const DisplayPacket* last_painted_ = nullptr;  // repaints of the same packet do not count
   bool fit_ = true;       // keep the frame fitted to the view until the user zooms or pans
   double zoom_ = 1.0;

@@ -2,6 +2,7 @@
 
 #include <QApplication>
 #include <QCloseEvent>
+#include <QDir>
 #include <QDockWidget>
 #include <QFileInfo>
 #include <QFontDatabase>
@@ -70,6 +71,7 @@ MainWindow::MainWindow(QWidget* parent)
 
   connect(binder_, &SettingsBinder::changed, this, &MainWindow::onSettingsEdited);
   qApp->installEventFilter(this);
+  worker_->selectSource(control_panel_->sourcePanel()->kind());
   worker_->moveToThread(&thread_);
   connect(&thread_, &QThread::finished, worker_, &QObject::deleteLater);
   thread_.setObjectName(QStringLiteral("imagepro-worker"));
@@ -97,8 +99,9 @@ void MainWindow::buildResultsArea() {
   auto* text_scroll = new QScrollArea;
   text_scroll->setWidget(results_text_);
   text_scroll->setWidgetResizable(true);
-  // Wide enough for the longest line of the results text (the pose lines).
-  text_scroll->setMinimumWidth(QFontMetrics(results_text_->font()).horizontalAdvance(QString(44, QLatin1Char('0'))) + 30);
+  // Wide enough for the longest line of the results text.
+  text_scroll->setMinimumWidth(
+      QFontMetrics(results_text_->font()).horizontalAdvance(QString(kResultsColumns, QLatin1Char('0'))) + 30);
 
   results_area_ = new QWidget;
   results_area_->setObjectName(QStringLiteral("resultsArea"));
@@ -159,11 +162,14 @@ void MainWindow::buildDocks() {
   connect(source, &SourcePanel::openFileRequested, this, [this] { openDialog(false); });
   connect(source, &SourcePanel::startRequested, this, [this] { startSource(); });
   connect(source, &SourcePanel::stopRequested, this, &MainWindow::stopSource);
+  connect(source, &SourcePanel::stepRequested, this, &MainWindow::stepFile);
   // The source chosen is the source in use: its camera model is the one shown and calibrated.
   connect(source, &SourcePanel::kindChanged, this, [this](SourceKind kind) {
     settings_.source = kind;
     binder_->refresh();
     worker_->setSettings(settings_);
+    banner_->hide();  // an earlier source's problem is not this one's
+    if (!opening_paths_) worker_->selectSource(kind);
   });
   OutputPanel* output = control_panel_->outputPanel();
   connect(output, &OutputPanel::dataOutToggled, this, &MainWindow::dataOutDialog);
@@ -188,8 +194,13 @@ void MainWindow::buildStatusBar() {
   status_stream_ = new QLabel;
   status_stream_->setObjectName(QStringLiteral("statusStream"));
   status_stream_->setVisible(false);
+  status_data_out_ = new QLabel;
+  status_data_out_->setObjectName(QStringLiteral("statusDataOut"));
+  status_data_out_->setStyleSheet(QStringLiteral("color: #1b7a2f; font-weight: bold;"));
+  status_data_out_->setVisible(false);
   // A normal widget, so a message (an error, a warning) takes its place for a while.
   statusBar()->addWidget(status_state_, 1);
+  statusBar()->addPermanentWidget(status_data_out_);
   statusBar()->addPermanentWidget(status_stream_);
   statusBar()->addPermanentWidget(status_rate_);
   statusBar()->addPermanentWidget(status_source_);
@@ -201,16 +212,35 @@ void MainWindow::connectWorker() {
     control_panel_->sourcePanel()->setRunning(running);
     if (!running) status_rate_->setText(tr("stopped"));
   });
-  connect(worker_, &Worker::sourceChanged, this, [this](const QString& description) {
-    status_source_->setText(description);
-    control_panel_->sourcePanel()->setDescription(description);
+  connect(worker_, &Worker::runningChanged, this, [this](bool running) {
+    if (running) banner_->hide();  // the source runs: an earlier problem is over
   });
+  connect(worker_, &Worker::sourceChanged, this, &MainWindow::showSource);
+  connect(worker_, &Worker::resultsCleared, this, &MainWindow::clearShownResults);
+  // The recent list holds what opened; what fails to load leaves it.
+  connect(worker_, &Worker::filesOpened, this, [this](const QStringList& paths, int images) {
+    for (const QString& p : paths) recent_->add(p);
+    control_panel_->sourcePanel()->setFileCount(images);
+    banner_->hide();
+  });
+  connect(worker_, &Worker::filesFailed, this, [this](const QStringList& paths) {
+    for (const QString& p : paths) recent_->remove(p);
+    control_panel_->sourcePanel()->setFileCount(-1);
+  });
+  connect(worker_, &Worker::imageFailed, this, [this](const QString& path) { recent_->remove(path); });
   connect(worker_, &Worker::errorOccurred, this, &MainWindow::showError);
   connect(worker_, &Worker::warningOccurred, this,
           [this](const QString& message) { statusBar()->showMessage(tr("Warning: %1").arg(message), 15000); });
   connect(worker_, &Worker::dataOutChanged, this, [this](const QString& path) {
+    // Said, so that "writing to" does not stay in the status bar after it stopped.
+    if (path.isEmpty() && !data_out_path_.isEmpty()) showInfo(tr("Data Out stopped: %1 closed").arg(data_out_path_));
     data_out_path_ = path;
     control_panel_->outputPanel()->setDataOutPath(path);
+    if (data_out_action_) data_out_action_->setChecked(!path.isEmpty());
+    status_data_out_->setVisible(!path.isEmpty());
+    status_data_out_->setText(tr("\u25cf Data Out %1").arg(QFileInfo(path).fileName()));
+    status_data_out_->setToolTip(tr("Every frame's parameters are written to %1 (Ctrl+D stops)").arg(path));
+    updateTitle();
     if (!path.isEmpty()) showInfo(tr("Data Out writing to %1").arg(path));
   });
 }
@@ -220,6 +250,7 @@ void MainWindow::onPacket(const DisplayPacketPtr& packet) {
   latest_ = packet;
   readouts_dirty_ = true;
   view_->setPacket(packet);
+  if (packet->file_count > 0) control_panel_->sourcePanel()->setFileIndex(packet->file_index);
   plots_->append(packet->history);
   // A hidden view will not paint: let the worker send the next packet anyway.
   if (!view_->isVisible() || view_->size().isEmpty()) worker_->markDisplayed();
@@ -240,7 +271,7 @@ void MainWindow::refreshReadouts() {
   status_state_->setText(statusInWords(r.status));
   status_state_->setStyleSheet(r.status == Status::Ok || r.status == Status::Stopped ? QString()
                                                                                      : QStringLiteral("color: #b00020;"));
-  if (!packet.source.isEmpty()) status_source_->setText(packet.source);
+  if (!packet.source.isEmpty()) showSource(packet.source);
   status_stream_->setVisible(!packet.stream.isEmpty());
   status_stream_->setText(tr("Stream %1").arg(packet.stream));
   status_stream_->setStyleSheet(packet.stream_ok ? QString() : QStringLiteral("color: #b00020;"));
@@ -248,13 +279,49 @@ void MainWindow::refreshReadouts() {
   if (stage_times_->isVisible()) stage_times_->setTimes(r.times);
 }
 
-void MainWindow::onSettingsEdited() { worker_->setSettings(settings_); }
+void MainWindow::onSettingsEdited() {
+  worker_->setSettings(settings_);
+  updateTitle();  // the stream may have been switched
+}
 
 void MainWindow::setSettings(const Settings& settings) {
   settings_ = settings;
   settings_.source = control_panel_->sourcePanel()->kind();  // the panel's, never a file's
   binder_->refresh();
   worker_->setSettings(settings_);
+  updateTitle();
+}
+
+void MainWindow::showSource(const QString& description) {
+  if (description == source_description_) return;
+  source_description_ = description;
+  status_source_->setText(description);
+  control_panel_->sourcePanel()->setDescription(description);
+  updateTitle();
+}
+
+void MainWindow::updateTitle() {
+  QStringList parts{tr("ImagePro")};
+  if (!source_description_.isEmpty()) parts << source_description_;
+  if (!data_out_path_.isEmpty()) parts << tr("Data Out %1").arg(QFileInfo(data_out_path_).fileName());
+  if (settings_.stream.enabled)
+    parts << tr("Stream %1:%2").arg(QString::fromStdString(settings_.stream.host)).arg(settings_.stream.port);
+  const QString title = parts.join(QStringLiteral(" \u2014 "));
+  if (title != windowTitle()) setWindowTitle(title);
+}
+
+void MainWindow::clearShownResults(const QString& why) {
+  latest_.reset();
+  readouts_dirty_ = false;
+  view_->clear(why);
+  results_text_->setText(tr("No results yet."));
+  status_state_->setText(why);
+  status_state_->setStyleSheet(QString());
+  status_rate_->setText(worker_->isRunning() ? QString() : tr("stopped"));
+  status_stream_->setVisible(false);
+  histogram_->setHistogram(Histogram{}, -1);
+  stage_times_->setTimes(StageTimes{});
+  plots_->clear();  // one source run's plots, not two runs on one axis
 }
 
 void MainWindow::restoreDefaults() {
@@ -265,23 +332,41 @@ void MainWindow::restoreDefaults() {
 void MainWindow::selectSource(SourceKind kind) { control_panel_->sourcePanel()->setKind(kind); }
 
 void MainWindow::startSource() {
-  const SourceKind kind = control_panel_->sourcePanel()->kind();
-  if (kind == SourceKind::File) {
+  const SourcePanel* panel = control_panel_->sourcePanel();
+  if (!panel->canStart()) {  // File with nothing to play: the files first
     openDialog(false);
     return;
   }
-  worker_->start(kind);
+  worker_->start(panel->kind());
 }
 
 void MainWindow::stopSource() { worker_->stop(); }
 
 void MainWindow::openPaths(const QStringList& paths) {
   if (paths.isEmpty()) return;
-  last_dir_ = QFileInfo(paths.front()).absolutePath();
-  for (const QString& p : paths) recent_->add(p);
+  opening_paths_ = true;
   selectSource(SourceKind::File);
+  opening_paths_ = false;
   worker_->openFiles(paths);
 }
+
+void MainWindow::stepFile(FileStep step) {
+  if (control_panel_->sourcePanel()->kind() == SourceKind::File) worker_->stepFile(step);
+}
+
+void MainWindow::rememberDirectory(const QString& path) {
+  if (path.isEmpty()) return;
+  const QFileInfo info(path);
+  last_dir_ = info.isDir() ? info.absoluteFilePath() : info.absolutePath();
+  QSettings().setValue(QStringLiteral("lastDirectory"), last_dir_);  // where the next run starts too
+}
+
+QString MainWindow::dialogDirectory() const {
+  if (!last_dir_.isEmpty() && QFileInfo(last_dir_).isDir()) return last_dir_;
+  return QDir::homePath();
+}
+
+QString MainWindow::bannerText() const { return banner_->text(); }
 
 QString MainWindow::resultsText() const { return results_text_->text(); }
 
@@ -311,10 +396,13 @@ void MainWindow::restoreLayout() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
+  if (hasUnsavedCalibration() && !mayLoseCalibration()) {
+    event->ignore();
+    return;
+  }
   QSettings store;
   store.setValue(QStringLiteral("window/geometry"), saveGeometry());
   store.setValue(QStringLiteral("window/state"), saveState());
-  store.setValue(QStringLiteral("lastDirectory"), last_dir_);
   control_panel_->saveState(store);
   worker_->stop();
   QMainWindow::closeEvent(event);

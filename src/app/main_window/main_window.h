@@ -7,6 +7,9 @@
 #include <QMainWindow>
 #include <QThread>
 
+#include <optional>
+#include <utility>
+
 #include "app/worker/display_packet.h"
 #include "app/worker/source_kind.h"
 #include "core/pipeline/data_out.h"
@@ -42,9 +45,12 @@ class MainWindow : public QMainWindow {
   void setSettings(const Settings& settings);   // replaces the model, refreshes the panels
   const Settings& settings() const { return settings_; }
   void selectSource(SourceKind kind);
-  void startSource();                            // the selected live source
+  // The selected source: a live one, or a list of images or a video open on File (with
+  // nothing to play, File asks for files instead).
+  void startSource();
   void stopSource();
   void openPaths(const QStringList& paths);      // files or folders: switches to File input
+  void stepFile(FileStep step);                  // another image of the open list
   void openSamples();                            // the shipped sample frames (data_directory.h)
   bool saveScreenshot(const QString& path);
   // The screenshot option (thesis A.1.1): Screenshot stops a running live source while its
@@ -52,8 +58,19 @@ class MainWindow : public QMainWindow {
   void setFreezeOnScreenshot(bool on);
   bool freezeOnScreenshot() const;
   bool frozenForScreenshot() const { return frozen_for_screenshot_; }
-  void startDataOut(const QString& path, ExistingFile existing, bool replace);
+  // False (the reason shown) for a name that is no CSV text file's: Data Out writes CSV,
+  // to a name ending in .csv or .txt; a name without an extension gets .csv.
+  // A calibration set and in use (the wizard's Set and Use, an imported camera, Set d0):
+  // quitting asks to save the settings while the source in use's camera still has it and
+  // it has not been saved since (in a settings file, or as the wizard's calibration file).
+  void calibrationInUse();
+  void calibrationSaved(const Settings& saved);  // clears it when `saved` holds that camera
+  bool hasUnsavedCalibration() const;
+
+  bool startDataOut(const QString& path, ExistingFile existing, bool replace);
   void stopDataOut();
+  // Ctrl+D: Data Out off while it writes, else the file dialog that switches it on.
+  void toggleDataOut();
 
   Worker* worker() const { return worker_; }
   ControlPanel* controlPanel() const { return control_panel_; }
@@ -64,6 +81,9 @@ class MainWindow : public QMainWindow {
   QWidget* resultsArea() const { return results_area_; }
   QString resultsText() const;
   QString lastError() const { return last_error_; }
+  QString bannerText() const;  // the error banner's text while it shows, else empty
+  // Where the file dialogs start: the folder the user last chose, or the home folder.
+  QString dialogDirectory() const;
   QString dataOutPath() const { return data_out_path_; }
   QStringList recentPaths() const;
   std::int64_t packetsShown() const { return packets_shown_; }
@@ -89,6 +109,14 @@ class MainWindow : public QMainWindow {
   void onSettingsEdited();
   void showError(const QString& message);
   void showInfo(const QString& message);
+  // What the selected source is and what is on (Data Out, the stream): window title,
+  // status bar and the Input Source panel.
+  void showSource(const QString& description);
+  void updateTitle();
+  // The selected source has no frame yet: the last source's frame, numbers, status and
+  // plots go, and the frame view says `why`.
+  void clearShownResults(const QString& why);
+  void rememberDirectory(const QString& path);
   // Interactive versions with dialogs.
   void openDialog(bool folder);
   void saveSettingsDialog();
@@ -97,6 +125,8 @@ class MainWindow : public QMainWindow {
   void dataOutDialog(bool on);
   void settingsDialog();
   void showKeys();
+  // Asks whether to save an unsaved calibration before quitting: true to quit.
+  bool mayLoseCalibration();
 
   Settings settings_;
   SettingsBinder* binder_;
@@ -115,6 +145,10 @@ class MainWindow : public QMainWindow {
   QLabel* status_rate_ = nullptr;
   QLabel* status_stream_ = nullptr;  // the live stream's counts and status, hidden when it is off
   QLabel* status_state_ = nullptr;
+  QLabel* status_data_out_ = nullptr;  // shown while Data Out writes
+  QAction* data_out_action_ = nullptr;
+  QString source_description_;
+  bool opening_paths_ = false;  // openPaths selects File itself: no second selection for the worker
   static constexpr int kReadoutMs = 100;
   QTimer* readout_timer_ = nullptr;
   QElapsedTimer readout_clock_;
@@ -126,6 +160,7 @@ class MainWindow : public QMainWindow {
   std::int64_t packets_shown_ = 0;
   QAction* freeze_action_ = nullptr;
   bool frozen_for_screenshot_ = false;
+  std::optional<std::pair<SourceKind, CameraModel>> unsaved_calibration_;
 };
 
 }  // namespace imagepro::app

@@ -18,6 +18,7 @@
 #include "app/panels/control_panel.h"
 #include "app/main_window/frame_view.h"
 #include "app/main_window/main_window.h"
+#include "app/main_window/message_banner.h"
 #include "app/panels/output_panel.h"
 #include "app/main_window/recent_files.h"
 #include "app/settings/settings_binder.h"
@@ -42,7 +43,10 @@ void MainWindow::buildMenus() {
   file->addAction(tr("Open S&amples"), this, &MainWindow::openSamples);
   QMenu* recent_menu = file->addMenu(tr("&Recent"));
   recent_ = new RecentFiles(recent_menu, this);
-  connect(recent_, &RecentFiles::chosen, this, [this](const QString& path) { openPaths({path}); });
+  connect(recent_, &RecentFiles::chosen, this, [this](const QString& path) {
+    rememberDirectory(path);
+    openPaths({path});
+  });
   file->addSeparator();
   file->addAction(tr("&Save Settings..."), this, &MainWindow::saveSettingsDialog)->setShortcut(QKeySequence::Save);
   file->addAction(tr("&Load Settings..."), this, &MainWindow::loadSettingsDialog)->setShortcut(QKeySequence(tr("Ctrl+L")));
@@ -54,7 +58,15 @@ void MainWindow::buildMenus() {
   freeze_action_->setObjectName(QStringLiteral("screenshotFreezeAction"));
   freeze_action_->setCheckable(true);
   connect(freeze_action_, &QAction::toggled, this, &MainWindow::setFreezeOnScreenshot);
-  file->addAction(tr("Data &Out..."), this, [this] { dataOutDialog(true); })->setShortcut(QKeySequence(tr("Ctrl+D")));
+  // Checked while Data Out writes; Ctrl+D then switches it off (thesis appendix A's toggle).
+  data_out_action_ = file->addAction(tr("Data &Out"));
+  data_out_action_->setObjectName(QStringLiteral("dataOutAction"));
+  data_out_action_->setCheckable(true);
+  data_out_action_->setShortcut(QKeySequence(tr("Ctrl+D")));
+  connect(data_out_action_, &QAction::triggered, this, [this] {
+    data_out_action_->setChecked(!data_out_path_.isEmpty());  // the worker's answer sets it
+    toggleDataOut();
+  });
   file->addSeparator();
   file->addAction(tr("&Quit"), this, &QWidget::close)->setShortcut(QKeySequence::Quit);
 
@@ -64,6 +76,17 @@ void MainWindow::buildMenus() {
     else startSource();
   });
   start_stop->setShortcut(QKeySequence(Qt::Key_F5));
+  // The File source's image list; the keys are the frame's (main_window_events.cpp), so a
+  // number field keeps its own Page Up / Page Down: shown here, not made shortcuts.
+  const struct {
+    FileStep step;
+    const char* text;
+  } steps[] = {{FileStep::First, QT_TR_NOOP("&First Image\tHome")},
+               {FileStep::Previous, QT_TR_NOOP("&Previous Image\tLeft, PgUp")},
+               {FileStep::Next, QT_TR_NOOP("&Next Image\tRight, PgDown")},
+               {FileStep::Last, QT_TR_NOOP("&Last Image\tEnd")}};
+  for (const auto& s : steps) run->addAction(tr(s.text), this, [this, step = s.step] { stepFile(step); });
+  run->addSeparator();
   for (SourceKind k : kSourceKinds) {
     QAction* a = run->addAction(tr("Source: %1").arg(sourceKindLabel(k)), this, [this, k] { selectSource(k); });
     a->setShortcut(QKeySequence(QStringLiteral("Alt+%1").arg(static_cast<int>(k) + 1)));
@@ -107,19 +130,22 @@ void MainWindow::showKeys() {
                               "<table><tr><td>4 / 6</td><td>Tx - / +</td></tr><tr><td>2 / 8</td><td>Ty - / +</td></tr>"
                               "<tr><td>Insert / Delete</td><td>Tz - / +</td></tr><tr><td>Up / Down</td><td>Rx - / +</td></tr>"
                               "<tr><td>Left / Right</td><td>Ry - / +</td></tr><tr><td>Home / End</td><td>Rz - / +</td></tr></table>"
+                              "<p>With the File source and a list of images open, Right or Page Down shows the next "
+                              "image, Left or Page Up the previous one, Home the first and End the last.</p>"
                               "<p>F5 start / stop, Ctrl+O open, Ctrl+S / Ctrl+L save / load settings, Ctrl+Shift+S screenshot, "
-                              "Ctrl+D data out, Ctrl+0 fit, Ctrl++ / Ctrl+- zoom. The keys do not reach the target while "
-                              "a number or list field has the focus: click the frame first.</p>"));
+                              "Ctrl+D data out on / off, Ctrl+0 fit, Ctrl++ / Ctrl+- zoom. The keys do not reach the target "
+                              "while a number or list field has the focus: click the frame first.</p>"));
 }
 
 void MainWindow::openDialog(bool folder) {
   QStringList paths;
   if (folder) {
-    const QString dir = QFileDialog::getExistingDirectory(this, tr("Open an image folder"), last_dir_);
+    const QString dir = QFileDialog::getExistingDirectory(this, tr("Open an image folder"), dialogDirectory());
     if (!dir.isEmpty()) paths << dir;
   } else {
-    paths = QFileDialog::getOpenFileNames(this, tr("Open images"), last_dir_, kImageFilter);
+    paths = QFileDialog::getOpenFileNames(this, tr("Open images"), dialogDirectory(), kImageFilter);
   }
+  if (!paths.isEmpty()) rememberDirectory(paths.front());
   openPaths(paths);
 }
 
@@ -130,7 +156,7 @@ void MainWindow::openSamples() {
     showError(tr("The sample frames are not installed"));
     return;
   }
-  openPaths({samples});
+  openPaths({samples});  // the dialogs stay where the user was: not the shipped folder
 }
 
 bool MainWindow::loadSettingsFile(const QString& path) {
@@ -141,6 +167,7 @@ bool MainWindow::loadSettingsFile(const QString& path) {
     return false;
   }
   setSettings(loaded);
+  banner_->hide();  // an earlier load's error is over
   showInfo(tr("Settings loaded from %1").arg(path));
   return true;
 }
@@ -151,19 +178,67 @@ bool MainWindow::saveSettingsFile(const QString& path) {
     showError(tr("Settings not saved: %1").arg(QString::fromStdString(error)));
     return false;
   }
+  calibrationSaved(settings_);
   showInfo(tr("Settings saved to %1").arg(path));
   return true;
 }
 
+namespace {
+
+bool sameCamera(const CameraModel& a, const CameraModel& b) {
+  const Distortion &d = a.distortion, &e = b.distortion;
+  return a.width == b.width && a.height == b.height && a.pixel_size_mm == b.pixel_size_mm &&
+         a.image_plane_distance_mm == b.image_plane_distance_mm && a.principal_point_px == b.principal_point_px &&
+         d.k1 == e.k1 && d.k2 == e.k2 && d.p1 == e.p1 && d.p2 == e.p2;
+}
+
+}  // namespace
+
+void MainWindow::calibrationInUse() { unsaved_calibration_.emplace(settings_.source, settings_.camera()); }
+
+void MainWindow::calibrationSaved(const Settings& saved) {
+  if (unsaved_calibration_ && sameCamera(saved.camera(unsaved_calibration_->first), unsaved_calibration_->second))
+    unsaved_calibration_.reset();
+}
+
+bool MainWindow::hasUnsavedCalibration() const {
+  // Replaced since (another file loaded, the defaults, an edit): nothing of it is left to lose.
+  return unsaved_calibration_ &&
+         sameCamera(settings_.camera(unsaved_calibration_->first), unsaved_calibration_->second);
+}
+
+bool MainWindow::mayLoseCalibration() {
+  QMessageBox ask(QMessageBox::Warning, tr("Unsaved calibration"),
+                  tr("The %1 source's camera has a calibration set and in use that has not been saved: quitting "
+                     "loses it. Save the settings first?")
+                      .arg(sourceKindLabel(unsaved_calibration_->first)),
+                  QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, this);
+  ask.setObjectName(QStringLiteral("unsavedCalibration"));
+  ask.setDefaultButton(QMessageBox::Save);
+  switch (ask.exec()) {
+    case QMessageBox::Save:
+      saveSettingsDialog();
+      return !hasUnsavedCalibration();  // saved: quit; the dialog cancelled or the save failed: stay
+    case QMessageBox::Discard:
+      return true;
+    default:
+      return false;
+  }
+}
+
 void MainWindow::saveSettingsDialog() {
-  const QString path = QFileDialog::getSaveFileName(this, tr("Save settings"), last_dir_ + QStringLiteral("/settings.json"),
-                                                    kSettingsFilter);
-  if (!path.isEmpty()) saveSettingsFile(path);
+  const QString path = QFileDialog::getSaveFileName(
+      this, tr("Save settings"), dialogDirectory() + QStringLiteral("/settings.json"), kSettingsFilter);
+  if (path.isEmpty()) return;
+  rememberDirectory(path);
+  saveSettingsFile(path);
 }
 
 void MainWindow::loadSettingsDialog() {
-  const QString path = QFileDialog::getOpenFileName(this, tr("Load settings"), last_dir_, kSettingsFilter);
-  if (!path.isEmpty()) loadSettingsFile(path);
+  const QString path = QFileDialog::getOpenFileName(this, tr("Load settings"), dialogDirectory(), kSettingsFilter);
+  if (path.isEmpty()) return;
+  rememberDirectory(path);
+  loadSettingsFile(path);
 }
 
 void MainWindow::settingsDialog() {
@@ -214,9 +289,10 @@ void MainWindow::screenshotDialog() {
     showInfo(tr("Processing frozen while the screenshot is saved"));
   }
   const QString name = QStringLiteral("imagepro-%1.png").arg(QDateTime::currentDateTime().toString(QStringLiteral("yyyyMMdd-hhmmss")));
-  const QString path = QFileDialog::getSaveFileName(this, tr("Save screenshot"), last_dir_ + QLatin1Char('/') + name,
+  const QString path = QFileDialog::getSaveFileName(this, tr("Save screenshot"), dialogDirectory() + QLatin1Char('/') + name,
                                                     tr("PNG images (*.png)"));
   if (!path.isEmpty()) {
+    rememberDirectory(path);
     if (!shot.save(path, "PNG")) showError(tr("Screenshot not saved: %1 cannot be written").arg(path));
     else showInfo(tr("Screenshot saved to %1").arg(path));
   }
@@ -226,11 +302,36 @@ void MainWindow::screenshotDialog() {
   }
 }
 
-void MainWindow::startDataOut(const QString& path, ExistingFile existing, bool replace) {
+namespace {
+
+// Data Out's file by its name: CSV text, as .csv or the thesis's .txt. A name without an
+// extension gets .csv; any other extension (an image's, say) is refused: empty.
+QString dataOutFileName(const QString& path) {
+  const QFileInfo info(path);
+  const QString suffix = info.suffix().toLower();
+  if (suffix == QLatin1String("csv") || suffix == QLatin1String("txt")) return path;
+  if (suffix.isEmpty() && !info.fileName().isEmpty()) return path + QStringLiteral(".csv");
+  return {};
+}
+
+}  // namespace
+
+bool MainWindow::startDataOut(const QString& path, ExistingFile existing, bool replace) {
+  if (dataOutFileName(path) != path) {
+    showError(tr("Data Out not started: it writes CSV text, so the file's name must end in .csv or .txt, not "
+                 "\"%1\"").arg(QFileInfo(path).fileName()));
+    return false;
+  }
   worker_->setDataOut(path, existing, replace);
+  return true;
 }
 
 void MainWindow::stopDataOut() { worker_->closeDataOut(); }
+
+void MainWindow::toggleDataOut() {
+  if (!data_out_path_.isEmpty()) stopDataOut();
+  else dataOutDialog(true);
+}
 
 void MainWindow::dataOutDialog(bool on) {
   if (!on) {
@@ -239,11 +340,18 @@ void MainWindow::dataOutDialog(bool on) {
   }
   // Unticked until the worker confirms the file is open.
   control_panel_->outputPanel()->setDataOutPath(data_out_path_);
-  const QString path = QFileDialog::getSaveFileName(this, tr("Data Out: write the parameters to"),
-                                                    last_dir_ + QStringLiteral("/dataout.csv"),
-                                                    tr("CSV files (*.csv *.txt);;All files (*)"), nullptr,
-                                                    QFileDialog::DontConfirmOverwrite);
-  if (path.isEmpty()) return;
+  const QString chosen = QFileDialog::getSaveFileName(this, tr("Data Out: write the parameters to"),
+                                                      dialogDirectory() + QStringLiteral("/dataout.csv"),
+                                                      tr("CSV files (*.csv *.txt)"), nullptr,
+                                                      QFileDialog::DontConfirmOverwrite);
+  if (chosen.isEmpty()) return;
+  rememberDirectory(chosen);
+  const QString path = dataOutFileName(chosen);
+  if (path.isEmpty()) {
+    startDataOut(chosen, ExistingFile::Fail, false);  // refused, the reason shown
+    return;
+  }
+  if (path != chosen) showInfo(tr("Data Out writes CSV: the file is %1").arg(QFileInfo(path).fileName()));
   if (!QFileInfo::exists(path)) {
     startDataOut(path, ExistingFile::Fail, false);
     return;

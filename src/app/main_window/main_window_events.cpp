@@ -1,4 +1,5 @@
-// MainWindow: drag and drop of images and folders, and the appendix A keys.
+// MainWindow: drag and drop of images and folders, the appendix A keys, and the keys
+// that step through the File source's images.
 #include <QAbstractItemView>
 #include <QAbstractSpinBox>
 #include <QComboBox>
@@ -37,6 +38,18 @@ bool editsText(const QObject* o) {
   return false;
 }
 
+std::optional<FileStep> fileStepFor(int key) {
+  switch (key) {
+    case Qt::Key_Home: return FileStep::First;
+    case Qt::Key_Left:
+    case Qt::Key_PageUp: return FileStep::Previous;
+    case Qt::Key_Right:
+    case Qt::Key_PageDown: return FileStep::Next;
+    case Qt::Key_End: return FileStep::Last;
+    default: return std::nullopt;
+  }
+}
+
 }  // namespace
 
 void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
@@ -47,6 +60,7 @@ void MainWindow::dropEvent(QDropEvent* event) {
   const QStringList paths = localPaths(event->mimeData());
   if (paths.isEmpty()) return;
   event->acceptProposedAction();
+  rememberDirectory(paths.front());
   openPaths(paths);
 }
 
@@ -55,10 +69,17 @@ bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
   // Only key presses meant for this window, and not those a field needs.
   auto* widget = qobject_cast<QWidget*>(watched);
   if (!widget || widget->window() != this || editsText(watched)) return QMainWindow::eventFilter(watched, event);
-  if (control_panel_->sourcePanel()->kind() != SourceKind::Virtual) return QMainWindow::eventFilter(watched, event);
   const auto* key_event = static_cast<QKeyEvent*>(event);
   if (key_event->modifiers() & (Qt::ControlModifier | Qt::AltModifier | Qt::MetaModifier))
     return QMainWindow::eventFilter(watched, event);
+  const SourceKind kind = control_panel_->sourcePanel()->kind();
+  if (kind == SourceKind::File) {
+    const std::optional<FileStep> step = fileStepFor(key_event->key());
+    if (!step || control_panel_->sourcePanel()->fileCount() < 2) return QMainWindow::eventFilter(watched, event);
+    stepFile(*step);
+    return true;
+  }
+  if (kind != SourceKind::Virtual) return QMainWindow::eventFilter(watched, event);
   const std::optional<VirtualKey> key = virtualKeyFor(key_event->key());
   if (!key) return QMainWindow::eventFilter(watched, event);
   worker_->pressKey(*key);

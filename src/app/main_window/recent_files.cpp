@@ -18,11 +18,21 @@ RecentFiles::RecentFiles(QMenu* menu, QObject* parent) : QObject(parent), menu_(
   rebuild();
 }
 
+namespace {
+QString cleanPath(const QString& path) { return QDir::cleanPath(QFileInfo(path).absoluteFilePath()); }
+}  // namespace
+
 void RecentFiles::add(const QString& path) {
-  const QString clean = QDir::cleanPath(QFileInfo(path).absoluteFilePath());
+  const QString clean = cleanPath(path);
   paths_.removeAll(clean);
   paths_.prepend(clean);
   while (paths_.size() > kMaxRecent) paths_.removeLast();
+  QSettings().setValue(kKey, paths_);
+  rebuild();
+}
+
+void RecentFiles::remove(const QString& path) {
+  if (paths_.removeAll(cleanPath(path)) == 0) return;
   QSettings().setValue(kKey, paths_);
   rebuild();
 }

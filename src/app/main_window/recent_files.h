@@ -14,6 +14,7 @@ class RecentFiles : public QObject {
   explicit RecentFiles(QMenu* menu, QObject* parent = nullptr);
 
   void add(const QString& path);
+  void remove(const QString& path);  // a path that failed to load
   QStringList paths() const { return paths_; }
 
  signals:

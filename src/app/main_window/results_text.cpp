@@ -22,6 +22,21 @@ QString poseLines(const char* label, const Pose& p) {
       .arg(p.tz_mm, 7, 'f', 2);
 }
 
+// `text` after `label` (padded to the value column), broken between words into lines of
+// at most kResultsColumns characters, the later ones indented to the value column: the
+// status in words is longer than the column beside the frame.
+QString wrapped(const QString& label, const QString& text) {
+  const int indent = 10;
+  QStringList lines{label.leftJustified(indent)};
+  for (const QString& word : text.split(QLatin1Char(' '), Qt::SkipEmptyParts)) {
+    QString& line = lines.back();
+    const bool first = line.size() <= indent;
+    if (!first && line.size() + 1 + word.size() > kResultsColumns) lines << QString(indent, QLatin1Char(' ')) + word;
+    else line += (first ? QString() : QStringLiteral(" ")) + word;
+  }
+  return lines.join(QLatin1Char('\n'));
+}
+
 }  // namespace
 
 QString statusInWords(Status status) {
@@ -33,7 +48,7 @@ QString formatResults(const DisplayPacket& packet) {
   // A narrow column: it sits beside the frame.
   const FrameResult& r = packet.result;
   QStringList lines;
-  lines << QStringLiteral("Status    %1").arg(statusInWords(r.status));
+  lines << wrapped(QStringLiteral("Status"), statusInWords(r.status));
   lines << QStringLiteral("Frame     %1").arg(r.index);
   if (!r.name.empty()) lines << QStringLiteral("File      %1").arg(QString::fromStdString(r.name));
   lines << QStringLiteral("Reached   %1").arg(labelOf(r.reached));

@@ -8,6 +8,10 @@
 
 namespace imagepro::app {
 
+// The text's width in characters: no line is longer (the column beside the frame is
+// this wide, main_window.cpp).
+inline constexpr int kResultsColumns = 44;
+
 QString formatResults(const DisplayPacket& packet);
 // "ok" or "NoTarget: no target was found in the frame".
 QString statusInWords(Status status);

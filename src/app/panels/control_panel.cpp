@@ -1,7 +1,13 @@
 #include "app/panels/control_panel.h"
 
+#include <QAbstractSlider>
+#include <QAbstractSpinBox>
+#include <QComboBox>
+#include <QCoreApplication>
+#include <QScrollBar>
 #include <QSettings>
 #include <QVBoxLayout>
+#include <QWheelEvent>
 
 #include "app/panels/calibration_panel.h"
 #include "app/panels/collapsible_group.h"
@@ -47,6 +53,26 @@ ControlPanel::ControlPanel(SettingsBinder& binder, QWidget* parent)
   static_cast<QVBoxLayout*>(column_->layout())->addStretch(1);
   setWidget(column_);
   binder.refresh();
+  // Value widgets keep the wheel for the column until focused; by default the wheel
+  // would focus them and change their value on the way past.
+  for (QWidget* w : column_->findChildren<QWidget*>()) {
+    if (!qobject_cast<QComboBox*>(w) && !qobject_cast<QAbstractSpinBox*>(w) && !qobject_cast<QAbstractSlider*>(w))
+      continue;
+    w->setFocusPolicy(Qt::StrongFocus);
+    w->installEventFilter(this);
+  }
+}
+
+bool ControlPanel::eventFilter(QObject* watched, QEvent* event) {
+  // The scroll area watches its own scroll bars too: only the column's widgets are ours.
+  if (event->type() == QEvent::Wheel && watched->isWidgetType()) {
+    auto* widget = static_cast<QWidget*>(watched);
+    if (column_->isAncestorOf(widget) && !widget->hasFocus()) {
+      QCoreApplication::sendEvent(verticalScrollBar(), event);
+      return true;
+    }
+  }
+  return QScrollArea::eventFilter(watched, event);
 }
 
 void ControlPanel::addGroup(const QString& title, const QString& tooltip, QWidget* content) {

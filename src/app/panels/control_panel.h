@@ -1,6 +1,8 @@
 #pragma once
 // The control panel (thesis appendix A.1.1): every sub-panel as a collapsible
-// group in one scrollable column, all bound to the one Settings model.
+// group in one scrollable column, all bound to the one Settings model. The mouse wheel
+// scrolls the column: a list, number field or slider takes the wheel only once it has
+// the keyboard focus (clicked or tabbed to), so scrolling past it changes nothing.
 #include <QScrollArea>
 #include <QStringList>
 
@@ -31,6 +33,9 @@ class ControlPanel : public QScrollArea {
   // Which groups are folded, remembered between runs.
   void saveState(QSettings& store) const;
   void restoreState(const QSettings& store);
+
+ protected:
+  bool eventFilter(QObject* watched, QEvent* event) override;
 
  private:
   void addGroup(const QString& title, const QString& tooltip, QWidget* content);

@@ -12,15 +12,15 @@ namespace imagepro::app {
 
 namespace {
 
-// A method list plus "Val" for Manual, enabled only when Manual is chosen.
+// A method list (the methods its key takes) plus "Val" for Manual, enabled only when
+// Manual is chosen.
 template <class Field>
-QWidget* thresholdControls(SettingsBinder& binder, Field field, bool with_none, const char* prefix) {
+QWidget* thresholdControls(SettingsBinder& binder, Field field, const char* prefix) {
   auto* box = new QWidget;
   auto* form = new QFormLayout(box);
   form->setContentsMargins(0, 0, 0, 0);
   const std::string p(prefix);
-  auto* method = binder.combo<ThresholdMethod>([field](Settings& s) -> auto& { return field(s).method; },
-                                               [with_none](ThresholdMethod m) { return with_none || m != ThresholdMethod::None; });
+  auto* method = binder.combo<ThresholdMethod>([field](Settings& s) -> auto& { return field(s).method; });
   method->setObjectName(QString::fromStdString(p + "Method"));
   auto* value = binder.intSpin([field](Settings& s) -> auto& { return field(s).manual_value; });
   value->setObjectName(QString::fromStdString(p + "Value"));
@@ -45,7 +45,7 @@ QWidget* thresholdPanel(SettingsBinder& binder) {
   auto* box = new QWidget;
   auto* layout = new QVBoxLayout(box);
   layout->setContentsMargins(0, 0, 0, 0);
-  layout->addWidget(thresholdControls(binder, [](Settings& s) -> ThresholdOptions& { return s.pipeline.threshold; }, false,
+  layout->addWidget(thresholdControls(binder, [](Settings& s) -> ThresholdOptions& { return s.pipeline.threshold; },
                                       "threshold"));
   // How the region is binarized with it (beyond the thesis: uneven light).
   auto* form = new QFormLayout;
@@ -74,7 +74,7 @@ QWidget* thresholdPanel(SettingsBinder& binder) {
 }
 
 QWidget* rethresholdPanel(SettingsBinder& binder) {
-  return thresholdControls(binder, [](Settings& s) -> ThresholdOptions& { return s.pipeline.rethreshold; }, true,
+  return thresholdControls(binder, [](Settings& s) -> ThresholdOptions& { return s.pipeline.rethreshold; },
                            "rethreshold");
 }
 

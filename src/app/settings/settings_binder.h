@@ -13,6 +13,7 @@
 #include <QObject>
 #include <QSpinBox>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -43,9 +44,10 @@ class SettingsBinder : public QObject {
   Settings& model() { return model_; }
   const Settings& model() const { return model_; }
 
-  // Field is a callable Settings& -> T&.
+  // Field is a callable Settings& -> T&. The list offers the values its key takes (a
+  // key may take only some of its enum's: the frame's threshold is never None).
   template <class E, class Field>
-  QComboBox* combo(Field field, std::function<bool(E)> keep = {});
+  QComboBox* combo(Field field);
   // One radio button per enum value, stacked vertically in a new widget.
   template <class E, class Field>
   QWidget* radios(Field field);
@@ -91,11 +93,13 @@ class SettingsBinder : public QObject {
 // ---- templates -------------------------------------------------------------------
 
 template <class E, class Field>
-QComboBox* SettingsBinder::combo(Field field, std::function<bool(E)> keep) {
+QComboBox* SettingsBinder::combo(Field field) {
   auto* box = new QComboBox;
-  bindKey(box, &field(model_));
+  const SettingKey& key = bindKey(box, &field(model_));
   for (const auto& entry : enumEntries(E{})) {
-    if (keep && !keep(entry.value)) continue;
+    if (key.type == SettingKey::Type::Choice &&
+        std::none_of(key.choices.begin(), key.choices.end(), [&entry](const auto& c) { return c.key == entry.key; }))
+      continue;
     box->addItem(fromView(entry.label), static_cast<int>(entry.value));
     box->setItemData(box->count() - 1, entryToolTip(entry), Qt::ToolTipRole);
   }

@@ -53,6 +53,7 @@ SettingsDialog::~SettingsDialog() = default;
 void SettingsDialog::applyTo(Settings& into) const {
   into.cameras = settings_.cameras;
   into.target = settings_.target;
+  into.pattern.card_size_mm = settings_.pattern.card_size_mm;  // the only pattern key shown here
   into.virtual_scene = settings_.virtual_scene;
   into.camera_source = settings_.camera_source;
 }
@@ -66,6 +67,10 @@ void SettingsDialog::buildTarget() {
                                         "targetSpotRadius", tr("Radius of the two black spots")));
   f->addRow(tr("Spot offset rf"), named(b.doubleSpin([](Settings& s) -> auto& { return s.target.spot_offset_mm; }, 3, kMm),
                                         "targetSpotOffset", tr("Distance between the centres of the two spots")));
+  f->addRow(tr("Card size"), named(b.doubleSpin([](Settings& s) -> auto& { return s.pattern.card_size_mm; }, 1, kMm),
+                                   "targetCardSize",
+                                   tr("Side of the black square card the target is on; the calibration pattern has "
+                                      "no grid spots on it")));
 }
 
 QComboBox* SettingsDialog::sourceChooser(const char* name) {

@@ -46,6 +46,8 @@ struct DisplayPacket {
   QString source;                         // the source's description
   QString stream;                         // the live stream's report (PoseStream::report), empty when off
   bool stream_ok = true;                  // its status is Ok
+  int file_index = -1;                    // the image shown of an open image list, from 0
+  int file_count = 0;                     // the list's images (0: no list)
 };
 
 using DisplayPacketPtr = std::shared_ptr<const DisplayPacket>;

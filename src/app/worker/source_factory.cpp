@@ -1,9 +1,11 @@
 #include "app/worker/source_factory.h"
 
+#include "app/worker/image_list_source.h"
+
 #include "core/camera/camera_settings.h"
 #include "core/camera/video_file.h"
 #include "core/source/image_inputs.h"
-#include "core/source/sources.h"
+#include "core/source/sources.h"  // the Virtual source
 
 namespace imagepro::app {
 
@@ -45,7 +47,7 @@ std::unique_ptr<FrameSource> createSource(SourceKind kind, const Settings& setti
       }
       std::vector<std::string> files;
       if (!expandPaths(paths, files, error)) return nullptr;
-      return makeFileSource(std::move(files));
+      return std::make_unique<ImageListSource>(std::move(files));
     }
     case SourceKind::Camera: {
       auto camera = std::make_unique<CameraSource>(cameraRequest(settings));

@@ -16,10 +16,11 @@
 namespace imagepro::app {
 
 // nullptr with `error` (naming the file or device and the reason) when it cannot be built.
-// For File, `paths` are image files, folders (every image in natural order), list files,
-// or one video file (played at its own rate). For Camera, the settings' camera_source
-// device, size and rate; its stored controls are set once it streams, and each one the
-// device lacks or refuses is a line in `warnings` (the stream goes on).
+// For File, `paths` are image files, folders (every image in natural order) and list
+// files, made one ImageListSource (image_list_source.h), or one video file (played at
+// its own rate). For Camera, the settings' camera_source device, size and rate; its
+// stored controls are set once it streams, and each one the device lacks or refuses is
+// a line in `warnings` (the stream goes on).
 std::unique_ptr<FrameSource> createSource(SourceKind kind, const Settings& settings, const QStringList& paths,
                                           std::string& error, std::vector<std::string>& warnings);
 // Gives a live source the new settings in place (the virtual scene and camera; its time

@@ -7,6 +7,9 @@
 
 namespace imagepro::app {
 
+// A step through the File source's open image list.
+enum class FileStep { First, Previous, Next, Last };
+
 // Panel label and command-line name ("file", "camera", "virtual").
 QString sourceKindLabel(SourceKind kind);
 QString sourceKindName(SourceKind kind);

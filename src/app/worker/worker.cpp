@@ -3,6 +3,7 @@
 #include <QMetaObject>
 #include <QTimer>
 
+#include <algorithm>
 #include <ctime>
 #include <filesystem>
 
@@ -87,12 +88,20 @@ void Worker::markDisplayed() {
   }, Qt::QueuedConnection);
 }
 
+void Worker::selectSource(SourceKind kind) {
+  QMetaObject::invokeMethod(this, [this, kind] { doSelect(kind); }, Qt::QueuedConnection);
+}
+
 void Worker::start(SourceKind kind) {
   QMetaObject::invokeMethod(this, [this, kind] { doStart(kind); }, Qt::QueuedConnection);
 }
 
 void Worker::openFiles(const QStringList& paths) {
   QMetaObject::invokeMethod(this, [this, paths] { doOpenFiles(paths); }, Qt::QueuedConnection);
+}
+
+void Worker::stepFile(FileStep step) {
+  QMetaObject::invokeMethod(this, [this, step] { doStepFile(step); }, Qt::QueuedConnection);
 }
 
 void Worker::stop() {
@@ -139,6 +148,28 @@ Settings Worker::appliedSettings() const {
 
 // ---- worker thread -------------------------------------------------------------
 
+QString Worker::description() const {
+  if (source_) return QString::fromStdString(source_->describe());
+  switch (kind_) {
+    case SourceKind::File: return QStringLiteral("file: none open");
+    case SourceKind::Camera:
+      return QStringLiteral("camera %1 (not started)").arg(QString::fromStdString(engine_.settings().camera_source.device));
+    case SourceKind::Virtual: break;
+  }
+  return QStringLiteral("virtual (not started)");
+}
+
+QString Worker::waitingHint() const {
+  switch (kind_) {
+    case SourceKind::File:
+      return QStringLiteral("No image open: Open File... (Ctrl+O), or drop images on the window");
+    case SourceKind::Camera:
+      return QStringLiteral("Camera %1: press Start (F5)").arg(QString::fromStdString(engine_.settings().camera_source.device));
+    case SourceKind::Virtual: break;
+  }
+  return QStringLiteral("Virtual source: press Start (F5)");
+}
+
 bool Worker::ensureSource(SourceKind kind, const QStringList& paths) {
   std::string error;
   std::vector<std::string> warnings;
@@ -147,9 +178,16 @@ bool Worker::ensureSource(SourceKind kind, const QStringList& paths) {
   kind_ = kind;
   useSourceCamera();
   have_file_frame_ = false;
+  file_ended_ = false;
   if (!source_) {
-    emit errorOccurred(QString::fromStdString(error));
-    emit sourceChanged(sourceKindLabel(kind) + QStringLiteral(": unavailable"));
+    const QString why = QString::fromStdString(error);
+    emit errorOccurred(why);
+    // Nothing of an earlier source or file stays on screen as if it were this one's.
+    clearResults(QStringLiteral("%1 not opened: %2").arg(sourceKindLabel(kind), why));
+    emit sourceChanged(kind == SourceKind::Camera
+                           ? QStringLiteral("camera %1 (unavailable)")
+                                 .arg(QString::fromStdString(engine_.settings().camera_source.device))
+                           : QStringLiteral("file: none open"));
     return false;
   }
   for (const std::string& w : warnings) emit warningOccurred(QString::fromStdString(w));
@@ -157,10 +195,55 @@ bool Worker::ensureSource(SourceKind kind, const QStringList& paths) {
   return true;
 }
 
-void Worker::doStart(SourceKind kind) {
-  if (kind == SourceKind::File) return;  // files are opened, not started
+void Worker::clearResults(const QString& why) {
+  have_result_ = false;
+  display_dirty_ = false;
+  history_.clear();
+  // A packet of the old source the GUI will now never paint must not hold back the next one.
+  packet_in_flight_.store(false);
+  emit resultsCleared(why);
+}
+
+ImageListSource* Worker::imageList() const {
+  return kind_ == SourceKind::File ? dynamic_cast<ImageListSource*>(source_.get()) : nullptr;
+}
+
+void Worker::doSelect(SourceKind kind) {
   applyPending();
-  if (!source_ || kind_ != kind) {
+  if (kind == kind_ && (source_ || kind != SourceKind::Virtual)) {
+    emit sourceChanged(description());
+    return;
+  }
+  doStop();
+  // An image list waits aside for File to be selected again; a video is opened anew.
+  if (imageList()) parked_files_ = std::move(source_);
+  source_.reset();
+  kind_ = kind;
+  useSourceCamera();
+  have_file_frame_ = false;
+  clearResults(waitingHint());
+  if (kind == SourceKind::Virtual) {
+    ensureSource(kind, {});
+  } else if (kind == SourceKind::File && parked_files_) {
+    source_ = std::move(parked_files_);
+    emit sourceChanged(description());
+    showImage(std::max(imageList()->shown(), 0));
+  } else {
+    emit sourceChanged(description());
+  }
+}
+
+void Worker::doStart(SourceKind kind) {
+  applyPending();
+  if (kind != kind_) doSelect(kind);
+  if (kind == SourceKind::File) {
+    if (ImageListSource* list = imageList()) {
+      if (list->atEnd()) list->seek(0);  // played to its end: again from the first image
+    } else if (!source_ || file_ended_) {
+      // Nothing open (the window asks for files first), or a video played to its end.
+      if (file_paths_.isEmpty() || !ensureSource(SourceKind::File, file_paths_)) return;
+    }
+  } else if (!source_) {
     if (!ensureSource(kind, {})) {
       setRunning(false);
       return;
@@ -175,10 +258,54 @@ void Worker::doStart(SourceKind kind) {
 void Worker::doOpenFiles(const QStringList& paths) {
   doStop();
   applyPending();
-  if (!ensureSource(SourceKind::File, paths)) return;
-  engine_.resetTracking();
+  parked_files_.reset();
+  file_paths_ = paths;
+  if (!ensureSource(SourceKind::File, paths)) {
+    emit filesFailed(paths);
+    return;
+  }
+  ImageListSource* list = imageList();
+  emit filesOpened(paths, list ? list->count() : 0);
+  if (list) {
+    showImage(0);
+    return;
+  }
+  engine_.resetTracking();  // a video plays at its own rate
+  next_due_ = Clock::now();
   setRunning(true);
   timer_->start(0);
+}
+
+void Worker::showImage(int index) {
+  ImageListSource* list = imageList();
+  if (!list) return;
+  timer_->stop();
+  setRunning(false);
+  list->seek(index);
+  engine_.resetTracking();  // still images are searched whole
+  if (!processFrame(true)) return;
+  if (isFatalSourceError(result_.status)) reportSourceError(result_.status);
+  publish();
+}
+
+void Worker::doStepFile(FileStep step) {
+  ImageListSource* list = imageList();
+  if (!list) return;
+  applyPending();
+  const int shown = list->shown();
+  int target = shown;
+  switch (step) {
+    case FileStep::First: target = 0; break;
+    case FileStep::Previous: target = shown - 1; break;
+    case FileStep::Next: target = shown + 1; break;
+    case FileStep::Last: target = list->count() - 1; break;
+  }
+  target = std::clamp(target, 0, list->count() - 1);
+  if (target == shown && have_result_) {  // at an end of the list: a play still stops
+    doStop();
+    return;
+  }
+  showImage(target);
 }
 
 void Worker::doStop() {
@@ -228,8 +355,8 @@ bool Worker::applyPending() {
         timer_->stop();
         setRunning(false);
       }
-    } else if (source_) {
-      emit sourceChanged(QString::fromStdString(source_->describe()));
+    } else {
+      emit sourceChanged(description());  // a camera not started names the device chosen
     }
   }
   if (source_)
@@ -268,6 +395,7 @@ void Worker::tick() {
   const bool changed = applyPending();
   if (!source_) return;  // a camera that could not be opened anew
   if (!processFrame(true)) {
+    file_ended_ = kind_ == SourceKind::File;
     doStop();
     // Options that came with the end of a file list apply to its last frame, still shown.
     if (changed && kind_ == SourceKind::File && have_file_frame_) {
@@ -293,6 +421,8 @@ void Worker::reportSourceError(Status status) {
   QString text = QString::fromStdString(source_ ? source_->lastError() : std::string());
   if (text.isEmpty()) text = QString::fromUtf8(statusMessage(status).data(), statusMessage(status).size());
   emit errorOccurred(text);
+  if (const ImageListSource* list = imageList(); list && list->shown() >= 0)
+    emit imageFailed(QString::fromStdString(list->path(list->shown())));
 }
 
 void Worker::scheduleNext() {
@@ -314,14 +444,17 @@ bool Worker::processFrame(bool from_source) {
     // A finished stream leaves the last real frame's result in place.
     if (engine_.step(*source_, step_result_) == Status::EndOfStream) return false;
     std::swap(result_, step_result_);
-    if (kind_ == SourceKind::File && !engine_.lastFrame().image.empty()) {
-      const Frame& f = engine_.lastFrame();
-      f.image.copyTo(file_frame_.image);
-      file_frame_.index = f.index;
-      file_frame_.timestamp_s = f.timestamp_s;
-      file_frame_.name = f.name;
-      file_frame_.truth = f.truth;
-      have_file_frame_ = true;
+    if (kind_ == SourceKind::File) {
+      // An image that could not be read leaves nothing to reprocess: not the one before it.
+      have_file_frame_ = !engine_.lastFrame().image.empty();
+      if (have_file_frame_) {
+        const Frame& f = engine_.lastFrame();
+        f.image.copyTo(file_frame_.image);
+        file_frame_.index = f.index;
+        file_frame_.timestamp_s = f.timestamp_s;
+        file_frame_.name = f.name;
+        file_frame_.truth = f.truth;
+      }
     }
   } else {
     engine_.resetTracking();  // the same still image again: no history to track from
@@ -383,6 +516,10 @@ void Worker::publish() {
   meters.cpu_percent = cpu_percent_;
   meters.source = source_ ? QString::fromStdString(source_->describe()) : QString();
   buildPacket(engine_, result_, meters, packet_ws_, *packet);
+  if (const ImageListSource* list = imageList()) {
+    packet->file_index = list->shown();
+    packet->file_count = list->count();
+  }
   if (stream_.isActive()) {
     packet->stream = QString::fromStdString(stream_.report());
     packet->stream_ok = ok(stream_.status());

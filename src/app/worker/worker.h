@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "app/worker/display_packet.h"
+#include "app/worker/image_list_source.h"
 #include "app/worker/packet_builder.h"
 #include "app/worker/source_kind.h"
 #include "app/main_window/virtual_keys.h"
@@ -43,11 +44,21 @@ class Worker : public QObject {
   // The GUI has shown the last packet: the next frame may send another.
   void markDisplayed();
 
-  // Starts (or resumes) a live source: Virtual or Camera. File input uses openFiles.
+  // The source the Input Source panel selects. The one before stops and its results are
+  // dropped (resultsCleared); the Virtual source is made at once, a camera only when it is
+  // started. An open image list is kept aside and comes back, at the image it showed,
+  // when File is selected again.
+  void selectSource(SourceKind kind);
+  // Starts (or resumes) a source. Virtual or Camera: frames at the source's rate. File: the
+  // open image list plays on from the image shown to its last one (from its first when the
+  // last is shown); a video plays on (from its start once it has ended).
   void start(SourceKind kind);
-  // Processes the given images (files or folders) in order; the last one stays and is
-  // reprocessed whenever the settings change.
+  // Opens the given images (files, folders or lists): the first image is processed and
+  // shown, and stays, reprocessed whenever the settings change, until stepped or played
+  // on. A video file plays at its own rate.
   void openFiles(const QStringList& paths);
+  // Shows another image of the open list (a play in progress stops).
+  void stepFile(FileStep step);
   void stop();
   // Data Out to `path`. `existing` says what to do with a file already there; with
   // `replace` (the user agreed) it is deleted first.
@@ -73,12 +84,27 @@ class Worker : public QObject {
   void errorOccurred(const QString& message);
   void warningOccurred(const QString& message);  // the source goes on (a camera control not set)
   void dataOutChanged(const QString& path);  // empty when closed
+  // The selected source has no frame to show (yet): `why` says what the user can do.
+  void resultsCleared(const QString& why);
+  // openFiles' `paths` opened as a list of `images` images (0 for a video), or could not be opened.
+  void filesOpened(const QStringList& paths, int images);
+  void filesFailed(const QStringList& paths);
+  // One image of the open list could not be read (its whole path).
+  void imageFailed(const QString& path);
   void frameCaptured(quint64 request, cv::Mat grey, QString source, bool running);
 
  private:
   // All below run in the worker thread.
+  void doSelect(SourceKind kind);
   void doStart(SourceKind kind);
   void doOpenFiles(const QStringList& paths);
+  void doStepFile(FileStep step);
+  // The open image list, or null (no list: nothing open, a video, another source).
+  ImageListSource* imageList() const;
+  // Reads, processes and shows image `index` of the open list, the worker stopped.
+  void showImage(int index);
+  // Drops the shown frame and its results; the GUI is told why.
+  void clearResults(const QString& why);
   void doStop();
   void doSetDataOut(const QString& path, ExistingFile existing, bool replace);
   void onIdleUpdate();
@@ -91,6 +117,10 @@ class Worker : public QObject {
   void setRunning(bool running);
   bool ensureSource(SourceKind kind, const QStringList& paths);
   void reportSourceError(Status status);
+  // The selected source in words: its own description, or what is chosen but not open.
+  QString description() const;
+  // What the user can do to get frames from the selected source.
+  QString waitingHint() const;
   // The engine reconstructs with the camera model of the source that runs (kind_).
   void useSourceCamera();
   // Opens, reopens or closes the live stream when its settings section changed.
@@ -99,8 +129,11 @@ class Worker : public QObject {
   Engine engine_;
   std::unique_ptr<FrameSource> source_;
   SourceKind kind_ = SourceKind::Virtual;
+  std::unique_ptr<FrameSource> parked_files_;  // the File input while another source is selected
+  QStringList file_paths_;                     // what openFiles was given last (a video is opened anew)
   Frame file_frame_;           // the last file frame, reprocessed on option changes
   bool have_file_frame_ = false;
+  bool file_ended_ = false;    // a video played to its end
   FrameResult result_;       // the last processed frame
   FrameResult step_result_;  // scratch for the next one
   bool have_result_ = false;

@@ -22,6 +22,11 @@ double microsecondsSince(Clock::time_point start) {
 // pixels (the whole frame's search also counts and reduces every pixel), or half the frame
 // without it: measured on the bench's real scenes, a larger guess at 1920 x 1080 (a near
 // target's) cost more than the whole frame's search (tracked 1,203 -> 373 frames/s).
+// The application level runs the stage that finds the target.
+bool reachesEllipse(ApplicationLevel level) {
+  return static_cast<int>(level) >= static_cast<int>(ApplicationLevel::Ellipse);
+}
+
 bool guessPays(const cv::Rect& region, cv::Size frame, const BinarizationOptions& binarization) {
   const int k = binarization.coarse_search ? coarseFactor(frame.width) : 1;
   return static_cast<double>(region.area()) <= 2.0 * static_cast<double>(frame.area()) / std::max(4, k * k);
@@ -103,6 +108,10 @@ void Engine::Impl::run(FrameResult& out) {
       tracker.reset();
       last_pose.reset();
     }
+    // Below the ellipse stage nothing finds the target, so nothing tells where it went: the
+    // whole frame is searched (a region kept from earlier frames would stay where the
+    // target was last found, and miss it once it has moved out).
+    if (stream && !reachesEllipse(o.level)) tracker.reset();
     if (stream) {
       const bool guess = tracker.fromOneDetection();
       const auto estimated = tracker.estimate(o.tracking, settings.camera(), settings.target, t, grey.size());

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -19,6 +20,11 @@ namespace {
 using json = nlohmann::ordered_json;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The methods that threshold a frame. None is the re-threshold's by-pass only: a frame
+// without a threshold has no binary image to search.
+constexpr ThresholdMethod kFrameThresholds[] = {ThresholdMethod::Manual, ThresholdMethod::AtOrig,
+                                                ThresholdMethod::AtMod};
 
 // A group of six per-parameter values in the pose's order (Rx, Ry, Rz, Tx, Ty, Tz), the
 // rotations' and the translations' each in their own range.
@@ -133,7 +139,7 @@ void visitSettings(Visitor& v, Settings& s) {
   v.object("pipeline", [&] {
     PipelineOptions& p = s.pipeline;
     v.object("threshold", [&] {
-      v.field("method", p.threshold.method);
+      v.field("method", p.threshold.method, std::span<const ThresholdMethod>(kFrameThresholds));
       v.field("value", p.threshold.manual_value, 0, 255);
     });
     v.object("binarization", [&] {
@@ -227,6 +233,21 @@ struct SettingsKeyError : std::runtime_error {
 template <class E>
 concept OptionEnum = std::is_enum_v<E> && requires(E e) { enumEntries(e); };
 
+// A key that takes only some of its enum's values.
+template <class E>
+bool allows(std::span<const E> allowed, E value) {
+  return std::find(allowed.begin(), allowed.end(), value) != allowed.end();
+}
+
+// "a, b, c": the keys of the values a key takes, for error messages.
+template <class E>
+std::string choicesOf(std::span<const E> allowed) {
+  std::string out;
+  for (const auto& e : enumEntries(E{}))
+    if (allows(allowed, e.value)) out += (out.empty() ? "" : ", ") + std::string(e.key);
+  return out;
+}
+
 class Reader {
  public:
   explicit Reader(const json& root) { stack_.push_back({&root, "", {}}); }
@@ -277,14 +298,13 @@ class Reader {
   template <class E>
     requires OptionEnum<E>
   void field(const char* key, E& value) {
-    if (const json* j = enter(key)) {
-      if (!j->is_string()) fail(path(key), "expected a string, one of: " + enumChoices<E>());
-      const auto parsed = parseEnum<E>(j->get<std::string>());
-      if (!parsed)
-        fail(path(key), "unknown value \"" + j->get<std::string>() + "\" (expected one of: " +
-                            enumChoices<E>() + ")");
-      value = *parsed;
-    }
+    if (const json* j = enter(key)) value = choice<E>(*j, path(key), enumChoices<E>(), {});
+  }
+
+  template <class E>
+    requires OptionEnum<E>
+  void field(const char* key, E& value, std::span<const E> allowed) {
+    if (const json* j = enter(key)) value = choice<E>(*j, path(key), choicesOf(allowed), allowed);
   }
 
   template <class T>
@@ -328,6 +348,18 @@ class Reader {
 
   std::string path(const char* key) const {
     return stack_.back().path.empty() ? std::string(key) : stack_.back().path + "." + key;
+  }
+
+  // An enum's key; with `allowed` given, one of those values only.
+  template <class E>
+  static E choice(const json& j, const std::string& where, const std::string& choices, std::span<const E> allowed) {
+    if (!j.is_string()) fail(where, "expected a string, one of: " + choices);
+    const std::string text = j.get<std::string>();
+    const auto parsed = parseEnum<E>(text);
+    if (!parsed) fail(where, "unknown value \"" + text + "\" (expected one of: " + choices + ")");
+    if (!allowed.empty() && !allows(allowed, *parsed))
+      fail(where, "\"" + text + "\" is not allowed here (expected one of: " + choices + ")");
+    return *parsed;
   }
 
   template <class T>
@@ -379,6 +411,12 @@ class Writer {
     requires OptionEnum<E>
   void field(const char* key, E& value) {
     (*stack_.back())[key] = std::string(enumName(value));
+  }
+
+  template <class E>
+    requires OptionEnum<E>
+  void field(const char* key, E& value, std::span<const E>) {
+    field(key, value);
   }
 
   template <class T>
@@ -499,10 +537,18 @@ class KeyLister : public KeyPath {
 
   template <class E>
     requires OptionEnum<E>
-  void field(const char* key, E&) {
+  void field(const char* key, E& value) {
+    field(key, value, std::span<const E>());
+  }
+
+  // Empty `allowed`: every value of the enum.
+  template <class E>
+    requires OptionEnum<E>
+  void field(const char* key, E&, std::span<const E> allowed) {
     SettingKey& k = add(key, SettingKey::Type::Choice);
     k.choice = typeid(E);
-    for (const auto& e : enumEntries(E{})) k.choices.push_back({e.key, e.label, e.description});
+    for (const auto& e : enumEntries(E{}))
+      if (allowed.empty() || allows(allowed, e.value)) k.choices.push_back({e.key, e.label, e.description});
   }
 
   template <class T>
@@ -547,6 +593,11 @@ class AddressFinder : public KeyPath {
 
   template <class T>
   void field(const char* key, T& value, T, T) {
+    check(key, &value);
+  }
+
+  template <class E>
+  void field(const char* key, E& value, std::span<const E>) {
     check(key, &value);
   }
 

@@ -57,7 +57,7 @@ struct SettingKey {
   Type type = Type::Number;
   double lo = 0.0, hi = 0.0;              // Number, WholeNumber: valid from lo to hi, both included
   std::type_index choice = typeid(void);  // Choice: the option enum
-  std::vector<Choice> choices;            // Choice: its table, in order
+  std::vector<Choice> choices;            // Choice: the values it takes, in its table's order
 };
 
 // Every key, in the order of the file.

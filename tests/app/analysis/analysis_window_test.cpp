@@ -28,6 +28,8 @@
 #include "app/analysis/analysis_window.h"
 #include "app/main_window/main_window.h"
 #include "app/main_window/responsiveness_probe.h"
+#include "app/panels/control_panel.h"
+#include "app/panels/source_panel.h"
 #include "app/worker/worker.h"
 #include "app_test_classes.h"
 #include "app_test_support.h"
@@ -476,6 +478,8 @@ void AnalysisWindowTest::liveTwoTargetsFromImageFiles() {
   w.setInput(AnalysisInput::LiveStream);
   w.run();
   main_->openPaths({dir});
+  QTRY_VERIFY_WITH_TIMEOUT(main_->controlPanel()->sourcePanel()->canStart(), 30000);  // the list is open
+  main_->startSource();  // plays it on from its first image
   QTRY_VERIFY_WITH_TIMEOUT(!main_->worker()->isRunning() && main_->worker()->framesProcessed() == 3, 30000);
   QTRY_VERIFY_WITH_TIMEOUT(w.collectedFrames() >= 1, 30000);
   QTest::qWait(200);  // the last file's packet

@@ -2,7 +2,11 @@
 // recovers the lens the settings rendered them with, lists every iteration as it ends, gives
 // the result to the settings with Set and Use, and names every problem in words.
 #include <QAction>
+#include <QApplication>
 #include <QElapsedTimer>
+#include <QLabel>
+#include <QMessageBox>
+#include <QTimer>
 #include <QFile>
 #include <QImage>
 #include <QLineEdit>
@@ -36,6 +40,21 @@ double relativeError(double value, double truth) { return std::abs(value - truth
 bool renderAll(CalibrationWizard& wizard) {
   for (int i = 0; i < kCalibrationSlots; ++i) wizard.renderVirtual(i);
   return QTest::qWaitFor([&] { return !wizard.isAnalysing(); }, 30000);
+}
+
+// The wizard with its four virtual views rendered through `lens`, the settings' camera
+// then without distortion and correction: a calibration starts from none, and Set and
+// Use has something to change. False when the views were not analysed in time.
+bool renderThroughLens(MainWindow& w, CalibrationWizard& wizard, const Distortion& lens) {
+  Settings through = w.settings();
+  through.camera().distortion = lens;
+  w.setSettings(through);
+  if (!renderAll(wizard)) return false;
+  Settings plain = w.settings();
+  plain.camera().distortion = {};
+  plain.pipeline.reconstruction.distortion_correction = false;
+  w.setSettings(plain);
+  return true;
 }
 
 QAction* menuAction(MainWindow& w, const QString& text) {
@@ -188,6 +207,98 @@ void CalibrationWizardTest::recoversTheLensFromVirtualPatternImages() {
   QVERIFY(!wizard.saveCalibration(dir + QStringLiteral("/no/such/folder/camera.json")));
   QVERIFY(wizard.runStatus().contains(QStringLiteral("camera.json")));
   QVERIFY(QFile::exists(file));
+}
+
+// A lens without distortion calibrates to a field of a few thousandths of a pixel at
+// most: it is said to be none worth speaking of, not magnified into a lens's field.
+void CalibrationWizardTest::aDistortionFreeLensIsNotDrawnAsOne() {
+  MainWindow& w = *window_;
+  CalibrationWizard& wizard = showCalibrationWizard(w);
+  QVERIFY(renderAll(wizard));  // through the default camera: no distortion
+  QSignalSpy finished(&wizard, &CalibrationWizard::calibrationFinished);
+  wizard.calibrate();
+  QVERIFY(finished.wait(60000));
+  const CalibrationResult* r = wizard.result();
+  QVERIFY(r && ok(r->status));
+  const double largest = wizard.fieldView()->largestDisplacementPx();
+  QVERIFY2(largest < DistortionFieldView::kNegligiblePx, qPrintable(QString::number(largest)));
+  QCOMPARE(wizard.fieldView()->arrowScale(), 0.0);
+  const QString caption = wizard.findChild<QLabel*>(QStringLiteral("distortionFieldCaption"))->text();
+  QVERIFY2(caption.contains(QStringLiteral("no distortion to speak of")), qPrintable(caption));
+  QVERIFY(!caption.contains(QStringLiteral("times their length")));
+  // A real lens is still drawn, magnified.
+  Settings lens = w.settings();
+  lens.camera().distortion = kThesisCameraDistortion;
+  w.setSettings(lens);
+  wizard.fieldView()->setField(lens.camera(), kThesisCameraDistortion);
+  QVERIFY(wizard.fieldView()->arrowScale() >= 1.0);
+}
+
+// Quitting with a calibration set and in use, and not saved, asks first: Cancel keeps the
+// window, Save writes the settings (and then quits), Discard quits. Saved, or replaced
+// since, it asks nothing.
+void CalibrationWizardTest::quittingAsksBeforeLosingTheCalibration() {
+  MainWindow& w = *window_;
+  CalibrationWizard& wizard = showCalibrationWizard(w);
+  QVERIFY(renderThroughLens(w, wizard, kThesisCameraDistortion));
+  QSignalSpy finished(&wizard, &CalibrationWizard::calibrationFinished);
+  wizard.calibrate();
+  QVERIFY(finished.wait(60000));
+  QVERIFY(!w.hasUnsavedCalibration());
+  wizard.findChild<QPushButton*>(QStringLiteral("setAndUse"))->click();
+  QVERIFY(w.hasUnsavedCalibration());
+  wizard.close();
+
+  // Answers the question with `button`; notes that it was asked.
+  const auto answer = [](QMessageBox::StandardButton button, bool& asked) {
+    asked = false;
+    QTimer::singleShot(0, qApp, [button, &asked] {
+      QMessageBox* box = nullptr;
+      for (int i = 0; i < 300 && !box; ++i) {
+        box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+        if (!box) QTest::qWait(10);
+      }
+      if (!box) return;
+      asked = box->objectName() == QStringLiteral("unsavedCalibration") &&
+              box->text().contains(QStringLiteral("has not been saved"));
+      box->button(button)->click();
+    });
+  };
+  bool asked = false;
+  answer(QMessageBox::Cancel, asked);
+  QVERIFY(!w.close());
+  QVERIFY(asked);
+  QVERIFY(w.isVisible());
+  // Save: the settings dialog; the file written, the window goes.
+  const QString file = scratchDir(QStringLiteral("unsaved-calibration")) + QStringLiteral("/settings.json");
+  FileDialogAnswer saved;
+  answer(QMessageBox::Save, asked);
+  QTimer::singleShot(0, qApp, [&saved, file] { answerFileDialog(saved, file); });
+  QVERIFY(w.close());
+  QVERIFY(asked && saved.seen);
+  Settings written;
+  std::string error;
+  QVERIFY2(ok(loadSettings(file.toStdString(), written, error)), error.c_str());
+  QCOMPARE(written.camera(w.settings().source).distortion.k1, wizard.result()->distortion.k1);
+  QVERIFY(!w.hasUnsavedCalibration());
+
+  // Set again, then replaced by other settings: nothing left to lose, nothing asked.
+  w.show();
+  wizard.findChild<QPushButton*>(QStringLiteral("setAndUse"))->click();
+  QVERIFY(w.hasUnsavedCalibration());
+  w.restoreDefaults();
+  QVERIFY(!w.hasUnsavedCalibration());
+  // Set again and discarded.
+  wizard.findChild<QPushButton*>(QStringLiteral("setAndUse"))->click();
+  answer(QMessageBox::Discard, asked);
+  QVERIFY(w.close());
+  QVERIFY(asked);
+  // Saved as the wizard's calibration file: kept, nothing asked.
+  w.show();
+  wizard.findChild<QPushButton*>(QStringLiteral("setAndUse"))->click();
+  QVERIFY(wizard.saveCalibration(scratchDir(QStringLiteral("unsaved-calibration-2")) + QStringLiteral("/camera.json")));
+  QVERIFY(!w.hasUnsavedCalibration());
+  QVERIFY(w.close());
 }
 
 void CalibrationWizardTest::problemsAreNamedPerImageAndForTheRun() {

@@ -1,9 +1,15 @@
 // File input: the image is processed and its parameters shown; an option change
-// reprocesses it; folders play in natural order; a bad file is a message, not a crash.
+// reprocesses it; folders are stepped through in natural order, with the keys and the
+// panel's buttons, and played with Start; a bad file is a message, not a crash, and
+// leaves the recent list; the file dialogs start where the user last was.
 #include <QAction>
 #include <QApplication>
 #include <QComboBox>
 #include <QDir>
+#include <QLabel>
+#include <QPushButton>
+#include <QSettings>
+#include <QToolButton>
 #include <QDropEvent>
 #include <QFileInfo>
 #include <QMimeData>
@@ -70,17 +76,197 @@ void FileTest::optionChangeReprocessesTheFile() {
   QVERIFY(!w.worker()->isRunning());
 }
 
-void FileTest::folderIsPlayedInNaturalOrder() {
+void FileTest::folderIsInNaturalOrder() {
   MainWindow& w = *window_;
   const QString dir = scratchDir(QStringLiteral("folder"));
   // img10 after img2: natural order, not text order.
   QVERIFY(QFile::copy(kSamples + QStringLiteral("sample01_facing.png"), dir + QStringLiteral("/img2.png")));
   QVERIFY(QFile::copy(kSamples + QStringLiteral("sample03_tilted50.png"), dir + QStringLiteral("/img10.png")));
   w.openPaths({dir});
-  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "img10.png"; }));
+  // The first image is shown and stays; the next one is a step away.
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "img2.png"; }));
   QTRY_VERIFY(!w.worker()->isRunning());
-  // The last image stays and is the one reprocessed.
-  QCOMPARE(w.frameView()->packet()->result.name, std::string("img10.png"));
+  w.stepFile(FileStep::Next);
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "img10.png"; }));
+  QVERIFY(!w.worker()->isRunning());
+}
+
+namespace {
+
+// A folder of `n` sample frames named img1.png ... imgN.png.
+QString numberedFolder(const QString& name, int n) {
+  const QString dir = scratchDir(name);
+  const QStringList samples{QStringLiteral("sample01_facing.png"), QStringLiteral("sample02_clutter.png"),
+                            QStringLiteral("sample03_tilted50.png")};
+  for (int i = 1; i <= n; ++i)
+    QFile::copy(kSamples + samples[(i - 1) % samples.size()], QStringLiteral("%1/img%2.png").arg(dir).arg(i));
+  return dir;
+}
+
+bool shows(MainWindow& w, const char* name) {
+  return waitForFrame(w, [name](const FrameResult& r) { return r.name == name; }, 10000);
+}
+
+}  // namespace
+
+// `imagepro FOLDER` shows the first image, and the user steps to any other: the keys the
+// manual names on the frame, and the Input Source panel's buttons, which say where they are.
+void FileTest::folderIsSteppedWithKeysAndButtons() {
+  MainWindow& w = *window_;
+  w.openPaths({numberedFolder(QStringLiteral("stepped"), 4)});
+  QVERIFY(shows(w, "img1.png"));
+  QTRY_VERIFY(!w.worker()->isRunning());
+  const std::int64_t processed = w.worker()->framesProcessed();
+  SourcePanel* panel = w.controlPanel()->sourcePanel();
+  QTRY_COMPARE(panel->filePosition()->text(), QStringLiteral("1 of 4"));
+  QVERIFY(panel->fileRow()->isVisible());
+  QCOMPARE(panel->button()->text(), QStringLiteral("Start"));
+  QTRY_VERIFY(w.windowTitle().contains(QStringLiteral("file img1.png (1 of 4)")));
+
+  w.frameView()->setFocus();
+  QTest::keyClick(w.frameView(), Qt::Key_Right);
+  QVERIFY(shows(w, "img2.png"));
+  QTest::keyClick(w.frameView(), Qt::Key_PageDown);
+  QVERIFY(shows(w, "img3.png"));
+  QTest::keyClick(w.frameView(), Qt::Key_End);
+  QVERIFY(shows(w, "img4.png"));
+  QTRY_COMPARE(panel->filePosition()->text(), QStringLiteral("4 of 4"));
+  QTRY_VERIFY(w.windowTitle().contains(QStringLiteral("file img4.png (4 of 4)")));
+  QTest::keyClick(w.frameView(), Qt::Key_Left);
+  QVERIFY(shows(w, "img3.png"));
+  QTest::keyClick(w.frameView(), Qt::Key_PageUp);
+  QVERIFY(shows(w, "img2.png"));
+  QTest::keyClick(w.frameView(), Qt::Key_Home);
+  QVERIFY(shows(w, "img1.png"));
+  // At the first image, back goes nowhere.
+  panel->findChild<QToolButton*>(QStringLiteral("filePrevious"))->click();
+  QTest::qWait(200);
+  QCOMPARE(w.frameView()->packet()->result.name, std::string("img1.png"));
+
+  // The buttons.
+  panel->findChild<QToolButton*>(QStringLiteral("fileNext"))->click();
+  QVERIFY(shows(w, "img2.png"));
+  panel->findChild<QToolButton*>(QStringLiteral("fileLast"))->click();
+  QVERIFY(shows(w, "img4.png"));
+  panel->findChild<QToolButton*>(QStringLiteral("filePrevious"))->click();
+  QVERIFY(shows(w, "img3.png"));
+  panel->findChild<QToolButton*>(QStringLiteral("fileFirst"))->click();
+  QVERIFY(shows(w, "img1.png"));
+  QTRY_COMPARE(panel->filePosition()->text(), QStringLiteral("1 of 4"));
+  // Each step processed its one image; nothing played on.
+  QCOMPARE(w.worker()->framesProcessed(), processed + 10);
+  QVERIFY(!w.worker()->isRunning());
+
+  // The image shown is the one an option change reprocesses.
+  QVERIFY(choose(w.findChild<QComboBox*>(QStringLiteral("thresholdMethod")), ThresholdMethod::Manual));
+  w.findChild<QSpinBox*>(QStringLiteral("thresholdValue"))->setValue(77);
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "img1.png" && r.threshold == 77; }));
+}
+
+// Start / Stop (F5) plays the list from the image shown to the last, as the manual says;
+// with nothing to play it asks for files.
+void FileTest::startPlaysTheRestOfTheImages() {
+  MainWindow& w = *window_;
+  w.openPaths({numberedFolder(QStringLiteral("played"), 5)});
+  QVERIFY(shows(w, "img1.png"));
+  w.stepFile(FileStep::Next);
+  QVERIFY(shows(w, "img2.png"));
+  QTRY_VERIFY(!w.worker()->isRunning());
+  const std::int64_t before = w.worker()->framesProcessed();
+  w.activateWindow();
+  QVERIFY(QTest::qWaitForWindowActive(&w));
+  QTest::keyClick(&w, Qt::Key_F5);
+  QVERIFY(shows(w, "img5.png"));
+  QTRY_VERIFY(!w.worker()->isRunning());
+  QCOMPARE(w.worker()->framesProcessed(), before + 3);  // img3, img4, img5
+  QVERIFY(QApplication::activeModalWidget() == nullptr);  // no file dialog
+  // Played to its end, Start plays it again from the first image.
+  w.controlPanel()->sourcePanel()->button()->click();
+  QTRY_VERIFY_WITH_TIMEOUT(w.worker()->framesProcessed() == before + 8, 10000);
+  QVERIFY(shows(w, "img5.png"));
+
+  // One image has nothing to play: the button and F5 ask for files.
+  w.openPaths({kSamples + QStringLiteral("sample01_facing.png")});
+  QVERIFY(shows(w, "sample01_facing.png"));
+  QTRY_COMPARE(w.controlPanel()->sourcePanel()->button()->text(), QStringLiteral("Open File..."));
+  FileDialogAnswer answer;
+  answerFileDialog(answer);
+  QTest::keyClick(&w, Qt::Key_F5);
+  QTRY_VERIFY(answer.seen);
+}
+
+// Only what loaded is remembered: a missing file, an empty folder, or a remembered file
+// that has since gone leave the recent list.
+void FileTest::recentFilesKeepOnlyWhatLoaded() {
+  MainWindow& w = *window_;
+  const QString dir = scratchDir(QStringLiteral("recent"));
+  const QString missing = dir + QStringLiteral("/missing.png");
+  w.openPaths({missing});
+  QTRY_VERIFY_WITH_TIMEOUT(w.lastError().contains(QStringLiteral("missing.png")), 5000);
+  QTest::qWait(100);
+  QVERIFY(!w.recentPaths().contains(missing));
+  const QString empty = scratchDir(QStringLiteral("recent-empty"));
+  w.openPaths({empty});
+  QTRY_VERIFY_WITH_TIMEOUT(w.lastError().contains(QStringLiteral("recent-empty")), 5000);
+  QTest::qWait(100);
+  QVERIFY(!w.recentPaths().contains(empty));
+
+  const QString file = dir + QStringLiteral("/kept.png");
+  QVERIFY(QFile::copy(kSamples + QStringLiteral("sample01_facing.png"), file));
+  w.openPaths({file});
+  QVERIFY(shows(w, "kept.png"));
+  QTRY_COMPARE(w.recentPaths().value(0), file);
+  // Gone since: chosen from File > Recent, it fails and leaves the list.
+  QVERIFY(QFile::remove(file));
+  QAction* entry = nullptr;
+  for (QAction* a : w.findChildren<QAction*>())
+    if (a->toolTip() == file) entry = a;
+  QVERIFY(entry);
+  entry->trigger();
+  QTRY_VERIFY_WITH_TIMEOUT(!w.recentPaths().contains(file), 5000);
+  QVERIFY(w.bannerText().contains(QStringLiteral("kept.png")));
+}
+
+// The Open, Data Out and Screenshot dialogs start in the home folder until the user has
+// chosen a folder, then where the user last was; never in the shipped samples' folder.
+void FileTest::dialogsStartWhereTheUserLastWas() {
+  window_.reset();
+  QSettings().remove(QStringLiteral("lastDirectory"));
+  window_ = std::make_unique<MainWindow>();
+  window_->show();
+  MainWindow& w = *window_;
+  const QString home = QDir(QDir::homePath()).absolutePath();
+  QCOMPARE(w.dialogDirectory(), home);
+  FileDialogAnswer answer;
+  answerFileDialog(answer);
+  w.controlPanel()->sourcePanel()->setKind(SourceKind::File);
+  w.controlPanel()->sourcePanel()->button()->click();  // Open File...
+  QVERIFY(answer.seen);
+  QCOMPARE(answer.directory, home);
+  // The samples are no place the user chose.
+  w.openSamples();
+  QVERIFY(shows(w, "sample01_facing.png"));
+  QCOMPARE(w.dialogDirectory(), home);
+
+  // An image chosen in the Open dialog: the dialogs then start in its folder.
+  const QString dir = numberedFolder(QStringLiteral("dialogs"), 1);
+  answerFileDialog(answer, dir + QStringLiteral("/img1.png"));
+  w.controlPanel()->sourcePanel()->findChild<QToolButton*>(QStringLiteral("fileOpen"))->click();
+  QVERIFY(answer.seen);
+  QVERIFY(shows(w, "img1.png"));
+  QCOMPARE(w.dialogDirectory(), dir);
+  answerFileDialog(answer);
+  w.findChild<QAction*>(QStringLiteral("dataOutAction"))->trigger();
+  QVERIFY(answer.seen);
+  QCOMPARE(answer.directory, dir);
+  answerFileDialog(answer);
+  w.findChild<QPushButton*>(QStringLiteral("screenshot"))->click();
+  QVERIFY(answer.seen);
+  QCOMPARE(answer.directory, dir);
+  // And the next session too.
+  window_.reset();
+  MainWindow again;
+  QCOMPARE(again.dialogDirectory(), dir);
 }
 
 // A list of paths plays in its order whatever its name ends in (the CLI's rule, one
@@ -94,6 +280,8 @@ void FileTest::listFilePlaysInItsOrder() {
               QStringLiteral("sample01_facing.png\n")).toUtf8());
   list.close();
   w.openPaths({list.fileName()});
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample03_tilted50.png"; }));
+  w.startSource();
   QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample01_facing.png"; }));
   QTRY_VERIFY(!w.worker()->isRunning());
 
@@ -155,9 +343,61 @@ void FileTest::samplesOpenFromTheMenu() {
   QVERIFY(open);
   open->trigger();
   QCOMPARE(w.controlPanel()->sourcePanel()->kind(), SourceKind::File);
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample01_facing.png"; }));
+  w.stepFile(FileStep::Last);
   QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample08_pattern.png"; }));
   QTRY_VERIFY(!w.worker()->isRunning());
   QVERIFY(w.lastError().isEmpty());
+}
+
+// The detection's numbers are drawn beside the target, not over its spots and rim, for
+// the direct fit's E and for Bennett's wider S, Q, Y alike.
+void FileTest::numbersSitBesideTheTarget() {
+  MainWindow& w = *window_;
+  w.resize(1200, 800);
+  w.openPaths({kSamples + QStringLiteral("sample01_facing.png")});
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.name == "sample01_facing.png" && r.pose; }));
+  for (EllipseMethod method : {EllipseMethod::DirectFit, EllipseMethod::Bennett}) {
+    QVERIFY(choose(w.findChild<QComboBox*>(QStringLiteral("ellipseMethod")), method));
+    QVERIFY(waitForApplied(w, [method](const Settings& s) { return s.pipeline.ellipse.method == method; }));
+    QTRY_VERIFY(w.frameView()->packet()->ellipse_method == method && !w.frameView()->packet()->result.targets.empty());
+    const FrameView& view = *w.frameView();
+    const auto labels = view.numberLabels();
+    const auto& targets = view.packet()->result.targets;
+    QCOMPARE(labels.size(), targets.size());
+    QVERIFY(labels[0].text.startsWith(method == EllipseMethod::Bennett ? QStringLiteral("S ") : QStringLiteral("E ")));
+    const QRectF target = view.targetScreenBox(targets[0]);
+    QVERIFY(target.width() > 20.0);  // the disk as shown, not a point
+    QVERIFY2(!labels[0].box.intersects(target), qPrintable(labels[0].text));
+    QVERIFY(QRectF(view.rect()).contains(labels[0].box));
+    // Next to it: centred under it, a few pixels away.
+    QVERIFY(std::abs(labels[0].box.center().x() - target.center().x()) < 1.0);
+    QVERIFY(labels[0].box.top() - target.bottom() < 10.0);
+  }
+}
+
+// A status in words longer than the results column is broken over lines, whole: the
+// text beside the frame cuts nothing off.
+void FileTest::longStatusIsWrappedNotCut() {
+  MainWindow& w = *window_;
+  const QString dir = scratchDir(QStringLiteral("truncated"));
+  QFile whole(kSamples + QStringLiteral("sample01_facing.png"));
+  QVERIFY(whole.open(QIODevice::ReadOnly));
+  QFile cut(dir + QStringLiteral("/cut.png"));
+  QVERIFY(cut.open(QIODevice::WriteOnly));
+  cut.write(whole.read(whole.size() / 2));
+  cut.close();
+  w.openPaths({cut.fileName()});
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) { return r.status == Status::FileTruncated; }));
+  QTRY_VERIFY(w.resultsText().startsWith(QStringLiteral("Status    FileTruncated:")));
+  const QStringList lines = w.resultsText().split(QLatin1Char('\n'));
+  for (const QString& line : lines) QVERIFY2(line.size() <= kResultsColumns, qPrintable(line));
+  // Every word of the message is there, in order, the later lines under the first's value.
+  QString joined;
+  for (const QString& line : lines.mid(0, 4)) joined += line.trimmed() + QLatin1Char(' ');
+  QVERIFY2(joined.simplified().contains(QString::fromUtf8(statusMessage(Status::FileTruncated).data())),
+           qPrintable(joined));
+  QVERIFY(lines[1].startsWith(QString(10, QLatin1Char(' '))));
 }
 
 // The results text of a frame whose spots could not tell the rim's two circles apart: an

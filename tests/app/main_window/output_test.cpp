@@ -31,6 +31,7 @@
 #include "app/main_window/main_window.h"
 #include "app/panels/control_panel.h"
 #include "app/panels/output_panel.h"
+#include "app/panels/source_panel.h"
 #include "app/plots/histogram_chart.h"
 #include "app/plots/pose_plots.h"
 #include "app/worker/worker.h"
@@ -297,6 +298,86 @@ void OutputTest::dataOutNeverOverwritesSilently() {
   w.stopDataOut();
   QTRY_VERIFY(w.dataOutPath().isEmpty());
   QCOMPARE(readLines(path), QStringList{QString::fromStdString(DataOut::header())});
+}
+
+// Ctrl+D as the manual says: the file dialog while Data Out is off, Data Out off while it
+// writes (no dialog). While it writes the status bar says so, whatever else it shows.
+void OutputTest::dataOutTogglesWithCtrlD() {
+  MainWindow& w = *window_;
+  w.activateWindow();
+  QVERIFY(QTest::qWaitForWindowActive(&w));
+  const QString path = scratchDir(QStringLiteral("dataout_toggle")) + QStringLiteral("/rows.csv");
+  auto* indicator = w.statusBar()->findChild<QLabel*>(QStringLiteral("statusDataOut"));
+  QVERIFY(indicator && !indicator->isVisible());
+  FileDialogAnswer answer;
+  answerFileDialog(answer, path);
+  QTest::keyClick(&w, Qt::Key_D, Qt::ControlModifier);
+  QVERIFY(answer.seen);
+  QTRY_COMPARE_WITH_TIMEOUT(w.dataOutPath(), path, 5000);
+  QVERIFY(w.findChild<QAction*>(QStringLiteral("dataOutAction"))->isChecked());
+  QVERIFY(w.controlPanel()->outputPanel()->dataOutBox()->isChecked());
+  QVERIFY(indicator->isVisible());
+  QVERIFY(indicator->text().contains(QStringLiteral("rows.csv")));
+  w.selectSource(SourceKind::Virtual);
+  w.startSource();
+  QTRY_VERIFY_WITH_TIMEOUT(readLines(path).size() >= 5, 10000);
+  // A message in the status bar does not hide it.
+  w.statusBar()->showMessage(QStringLiteral("something else"), 5000);
+  QVERIFY(indicator->isVisible());
+
+  // Ctrl+D while writing: off, without a dialog (one would be cancelled and noted here).
+  w.activateWindow();  // back from the dialog
+  QVERIFY(QTest::qWaitForWindowActive(&w));
+  answerFileDialog(answer, {}, 1000);
+  QTest::keyClick(&w, Qt::Key_D, Qt::ControlModifier);
+  QTRY_VERIFY_WITH_TIMEOUT(w.dataOutPath().isEmpty(), 5000);
+  QVERIFY(!indicator->isVisible());
+  QCOMPARE(w.statusBar()->currentMessage(), QStringLiteral("Data Out stopped: %1 closed").arg(path));
+  QVERIFY(!w.findChild<QAction*>(QStringLiteral("dataOutAction"))->isChecked());
+  QVERIFY(!w.controlPanel()->outputPanel()->dataOutBox()->isChecked());
+  const int rows = readLines(path).size();
+  QTest::qWait(300);  // also runs the answer's wait for a dialog to its end
+  QCOMPARE(readLines(path).size(), rows);  // no row after it went off
+  QVERIFY(!answer.seen);
+  w.stopSource();
+}
+
+// Data Out writes CSV: an image's name is refused with the reason, a name without an
+// extension gets .csv.
+void OutputTest::dataOutRefusesANameThatIsNotCsv() {
+  MainWindow& w = *window_;
+  const QString dir = scratchDir(QStringLiteral("dataout_names"));
+  QVERIFY(!w.startDataOut(dir + QStringLiteral("/poses.png"), ExistingFile::Fail, false));
+  QVERIFY(w.lastError().contains(QStringLiteral("\"poses.png\"")));
+  QVERIFY(w.lastError().contains(QStringLiteral(".csv or .txt")));
+  QVERIFY(w.bannerText().contains(QStringLiteral("poses.png")));
+  QTest::qWait(200);
+  QVERIFY(w.dataOutPath().isEmpty());
+  QVERIFY(!QFileInfo::exists(dir + QStringLiteral("/poses.png")));
+
+  // The same from the dialog.
+  FileDialogAnswer answer;
+  answerFileDialog(answer, dir + QStringLiteral("/shot.png"));
+  w.findChild<QCheckBox*>(QStringLiteral("dataOut"))->click();
+  QVERIFY(answer.seen);
+  QVERIFY(w.lastError().contains(QStringLiteral("\"shot.png\"")));
+  QTest::qWait(200);
+  QVERIFY(w.dataOutPath().isEmpty());
+  QVERIFY(!w.findChild<QCheckBox*>(QStringLiteral("dataOut"))->isChecked());
+  QVERIFY(!QFileInfo::exists(dir + QStringLiteral("/shot.png")));
+
+  // No extension: .csv added, and said.
+  answerFileDialog(answer, dir + QStringLiteral("/poses"));
+  w.findChild<QCheckBox*>(QStringLiteral("dataOut"))->click();
+  QVERIFY(answer.seen);
+  QTRY_COMPARE_WITH_TIMEOUT(w.dataOutPath(), dir + QStringLiteral("/poses.csv"), 5000);
+  QCOMPARE(readLines(dir + QStringLiteral("/poses.csv")).value(0), QString::fromStdString(DataOut::header()));
+  // The thesis's dataout.txt is CSV text too.
+  w.stopDataOut();
+  QTRY_VERIFY(w.dataOutPath().isEmpty());
+  QVERIFY(w.startDataOut(dir + QStringLiteral("/dataout.txt"), ExistingFile::Fail, false));
+  QTRY_COMPARE_WITH_TIMEOUT(w.dataOutPath(), dir + QStringLiteral("/dataout.txt"), 5000);
+  w.stopDataOut();
 }
 
 void OutputTest::plotsRecordAndExport() {

@@ -90,6 +90,27 @@ void SettingsFileTest::malformedFileNamesTheKey() {
   QCOMPARE(json(w.worker()->appliedSettings()), before);
 }
 
+// "threshold": {"method": "none"} is refused at load, by its key, with the values that
+// key takes; the window keeps running with the options before.
+void SettingsFileTest::thresholdNoneIsRefusedByItsKey() {
+  MainWindow& w = *window_;
+  const QString dir = scratchDir(QStringLiteral("threshold_none"));
+  const std::string before = json(w.settings());
+  writeText(dir + QStringLiteral("/none.json"), R"({"pipeline": {"threshold": {"method": "none"}}})");
+  QVERIFY(!w.loadSettingsFile(dir + QStringLiteral("/none.json")));
+  QVERIFY2(w.bannerText().contains(QStringLiteral("pipeline.threshold.method: \"none\" is not allowed here")),
+           qPrintable(w.bannerText()));
+  QVERIFY(w.lastError().contains(QStringLiteral("(expected one of: manual, at-orig, at-mod)")));
+  QCOMPARE(json(w.settings()), before);
+  QCOMPARE(json(w.worker()->appliedSettings()), before);
+  // The re-threshold's by-pass loads, and the panel shows it.
+  writeText(dir + QStringLiteral("/rethreshold.json"), R"({"pipeline": {"rethreshold": {"method": "none"}}})");
+  QVERIFY(w.loadSettingsFile(dir + QStringLiteral("/rethreshold.json")));
+  QCOMPARE(w.findChild<QComboBox*>(QStringLiteral("rethresholdMethod"))->currentData().toInt(),
+           static_cast<int>(ThresholdMethod::None));
+  QVERIFY(w.bannerText().isEmpty());
+}
+
 void SettingsFileTest::unreadableFileIsAnError() {
   MainWindow& w = *window_;
   const QString dir = scratchDir(QStringLiteral("unreadable"));

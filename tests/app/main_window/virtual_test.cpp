@@ -164,6 +164,37 @@ void VirtualTest::guiStaysResponsiveAtFullSpeed() {
   w.stopSource();
 }
 
+// Below the ellipse stage nothing finds the target: the whole frame is searched, not the
+// region where it was last tracked, so a target that moved meanwhile is found again as
+// soon as the level is raised.
+void VirtualTest::searchedRegionIsWholeBelowTheEllipseStage() {
+  MainWindow& w = *window_;
+  w.selectSource(SourceKind::Virtual);
+  w.startSource();
+  const auto whole = [](const FrameResult& r) { return r.search_region == cv::Rect(cv::Point(), r.image_size); };
+  // Tracked: a region about the target, much smaller than the frame.
+  QVERIFY(waitForFrame(w, [](const FrameResult& r) {
+    return r.pose && !r.search_region.empty() && r.search_region.area() < r.image_size.area() / 4;
+  }));
+  const double start_tx = w.frameView()->packet()->result.truth->tx_mm;
+  QVERIFY(chooseRadio(w.findChild<QWidget*>(QStringLiteral("applicationLevel")), ApplicationLevel::Connectivity));
+  QVERIFY(waitForFrame(w, [&](const FrameResult& r) { return r.reached == ApplicationLevel::Connectivity && whole(r); }));
+  // The target moves far from where it was tracked; every frame still searches it all.
+  w.frameView()->setFocus();
+  for (int i = 0; i < 30; ++i) QTest::keyClick(w.frameView(), Qt::Key_6);
+  const double moved = start_tx + 30 * w.settings().virtual_scene.key_step_mm;
+  QVERIFY(waitForFrame(w, [&](const FrameResult& r) { return r.truth && near(r.truth->tx_mm, moved); }));
+  const std::int64_t frames = w.worker()->framesProcessed();
+  QVERIFY(waitForFrame(w, [&](const FrameResult& r) { return r.index > frames + 2; }));
+  QVERIFY(whole(w.frameView()->packet()->result));
+  // Back to Reconstruction: found where it now is.
+  QVERIFY(chooseRadio(w.findChild<QWidget*>(QStringLiteral("applicationLevel")), ApplicationLevel::Reconstruction));
+  QVERIFY(waitForFrame(w, [&](const FrameResult& r) {
+    return r.reached == ApplicationLevel::Reconstruction && r.pose && std::abs(r.pose->tx_mm - moved) < 5.0;
+  }));
+  w.stopSource();
+}
+
 void VirtualTest::missingCameraShowsAnError() {
   if (QFileInfo::exists(QStringLiteral("/dev/video0"))) QSKIP("a camera is attached: nothing to report");
   MainWindow& w = *window_;

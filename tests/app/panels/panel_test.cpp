@@ -1,9 +1,12 @@
 // Each appendix A panel's controls change the options the worker thread runs with.
+#include <QApplication>
 #include <QCheckBox>
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QScrollBar>
+#include <QWheelEvent>
 #include <QSpinBox>
 #include <QTest>
 
@@ -55,6 +58,55 @@ void PanelTest::thresholdPanel() {
   QVERIFY(waitForApplied(w, [](const Settings& s) { return s.pipeline.threshold.method == ThresholdMethod::AtOrig; }));
   // The first thresholding has no by-pass: None is a re-thresholding choice only.
   QCOMPARE(method->findData(static_cast<int>(ThresholdMethod::None)), -1);
+}
+
+namespace {
+
+// One notch of the mouse wheel, turned towards the user (down the page), over `widget`.
+bool wheelDown(QWidget* widget) {
+  const QPointF at(widget->width() / 2.0, widget->height() / 2.0);
+  QWheelEvent wheel(at, widget->mapToGlobal(at), QPoint(), QPoint(0, -120), Qt::NoButton, Qt::NoModifier,
+                    Qt::NoScrollPhase, false);
+  return QApplication::sendEvent(widget, &wheel);
+}
+
+}  // namespace
+
+// Scrolling the control panel with the wheel scrolls it, whatever passes under the
+// pointer: the lists and number fields keep their values until the user has focused one.
+void PanelTest::wheelScrollsThePanelNotItsValues() {
+  MainWindow& w = *window_;
+  w.resize(1200, 700);  // the panel is taller than its dock: it scrolls
+  QTest::qWait(50);
+  auto* panel = find<ControlPanel>(w, "controlPanel");
+  QScrollBar* scroll = panel->verticalScrollBar();
+  QVERIFY(scroll->maximum() > 0);
+  auto* rule = find<QComboBox>(w, "ellipseAcceptRule");
+  auto* margin = find<QSpinBox>(w, "cropMargin");
+  QVERIFY(rule && margin);
+  const Settings before = w.settings();
+  const int rule_index = rule->currentIndex();
+  const int margin_value = margin->value();
+  for (QWidget* widget : std::initializer_list<QWidget*>{rule, margin}) {
+    QVERIFY(!widget->hasFocus());
+    QCOMPARE(widget->focusPolicy(), Qt::StrongFocus);  // the wheel does not focus it either
+    const int at = scroll->value();
+    wheelDown(widget);
+    QVERIFY2(scroll->value() > at, qPrintable(widget->objectName()));
+  }
+  QCOMPARE(rule->currentIndex(), rule_index);
+  QCOMPARE(margin->value(), margin_value);
+  QTest::qWait(50);
+  QCOMPARE(w.settings().pipeline.ellipse.accept_rule, before.pipeline.ellipse.accept_rule);
+  QCOMPARE(w.settings().pipeline.reconstruction.crop_margin_px, before.pipeline.reconstruction.crop_margin_px);
+
+  // Focused (clicked or tabbed to), a field takes the wheel as usual.
+  margin->setFocus();
+  QTRY_VERIFY(margin->hasFocus());
+  const int at = scroll->value();
+  wheelDown(margin);
+  QCOMPARE(margin->value(), margin_value - 1);
+  QCOMPARE(scroll->value(), at);
 }
 
 void PanelTest::edgeAndConnectivityPanels() {
@@ -234,6 +286,12 @@ void PanelTest::settingsDialog() {
   auto* dialog = w.findChild<SettingsDialog*>();
   QVERIFY(dialog);
   dialog->findChild<QDoubleSpinBox*>(QStringLiteral("targetRadius"))->setValue(42.5);
+  // The Target tab has the card's size too, as the manual says.
+  auto* card = dialog->findChild<QDoubleSpinBox*>(QStringLiteral("targetCardSize"));
+  QVERIFY(card);
+  QCOMPARE(card->property("settingKey").toString(), QStringLiteral("pattern.card_size_mm"));
+  QCOMPARE(card->value(), Settings{}.pattern.card_size_mm);
+  card->setValue(150.0);
   dialog->findChild<QDoubleSpinBox*>(QStringLiteral("cameraD0"))->setValue(12.0);
   dialog->findChild<QDoubleSpinBox*>(QStringLiteral("virtualKeyStepMm"))->setValue(7.5);
   auto* k1 = dialog->findChild<QLineEdit*>(QStringLiteral("distortionK1"));
@@ -245,7 +303,7 @@ void PanelTest::settingsDialog() {
   dialog->findChild<QDialogButtonBox*>()->button(QDialogButtonBox::Ok)->click();
   QVERIFY(waitForApplied(w, [](const Settings& s) {
     return s.target.radius_mm == 42.5 && s.camera().image_plane_distance_mm == 12.0 && s.virtual_scene.key_step_mm == 7.5 &&
-           s.camera().distortion.k1 == -2.05e-7;
+           s.camera().distortion.k1 == -2.05e-7 && s.pattern.card_size_mm == 150.0;
   }));
 }
 

@@ -219,6 +219,35 @@ TEST(Settings, StreamRoundTrip) {
   EXPECT_EQ(b.stream.port, 5005);
 }
 
+// None is the re-threshold's by-pass: the frame's threshold refuses it by its key, and
+// the values the error offers are those that key takes.
+TEST(Settings, FrameThresholdIsNeverNone) {
+  const std::string none = loadError(R"({"pipeline": {"threshold": {"method": "none"}}})");
+  EXPECT_NE(none.find("pipeline.threshold.method: \"none\" is not allowed here (expected one of: manual, at-orig, at-mod)"),
+            std::string::npos)
+      << none;
+  const std::string unknown = loadError(R"({"pipeline": {"threshold": {"method": "otsu"}}})");
+  EXPECT_NE(unknown.find("pipeline.threshold.method: unknown value \"otsu\" (expected one of: manual, at-orig, at-mod)"),
+            std::string::npos)
+      << unknown;
+  EXPECT_NE(loadError(R"({"pipeline": {"threshold": {"method": 3}}})")
+                .find("pipeline.threshold.method: expected a string, one of: manual, at-orig, at-mod"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"pipeline": {"rethreshold": {"method": "otsu"}}})")
+                .find("(expected one of: none, manual, at-orig, at-mod)"),
+            std::string::npos);
+  Settings s;
+  std::string err;
+  ASSERT_EQ(settingsFromJson(R"({"pipeline": {"rethreshold": {"method": "none"}}})", s, err), Status::Ok) << err;
+  EXPECT_EQ(s.pipeline.rethreshold.method, ThresholdMethod::None);
+  // The settings table says the same to the GUI's lists and the Python module.
+  const SettingKey* frame = findSettingKey("pipeline.threshold.method");
+  ASSERT_NE(frame, nullptr);
+  ASSERT_EQ(frame->choices.size(), 3u);
+  EXPECT_EQ(frame->choices[0].key, "manual");
+  EXPECT_EQ(frame->choices[2].key, "at-mod");
+}
+
 TEST(Settings, StreamErrorsNameTheKey) {
   EXPECT_NE(loadError(R"({"stream": {"port": 0}})").find("stream.port: value 0 out of range [1, 65535]"),
             std::string::npos);
