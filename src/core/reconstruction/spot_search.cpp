@@ -45,6 +45,10 @@ constexpr double kGlareAboveLocalGrey = 20.0;
 constexpr double kSpotPlaceTolerance = 0.2;
 constexpr double kPairAreaRatio = 3.0;
 constexpr double kClearlyBestPair = 1.0;
+// The disk's own levels (diskLevels) need this many pixels, and this contrast between its
+// paper and its darkest, to cut spots at their middle.
+constexpr int kMinDiskPixels = 64;
+constexpr double kMinDiskContrast = 24.0;
 
 // The darkness-weighted centroid under a Gaussian window that follows it (a matched-filter
 // centre): each pass weighs a pixel by (white - g) exp(-|p - u|^2 / 2 s^2) about the last
@@ -404,6 +408,33 @@ bool chooseSpots(const std::vector<SpotComponent>& components, cv::Point origin,
   return std::isfinite(best) && second > best + kClearlyBestPair;
 }
 
+// The paper's level on the disk (the upper quartile of the grey levels inside the search
+// ellipse `inner`: spots and an occluder's part take less than that) and its darkest (the
+// 2nd percentile: the spots' cores). False with too few pixels to tell.
+bool diskLevels(const cv::Mat& grey, const cv::Rect& crop, const EllipseForm& inner, double& paper, double& darkest) {
+  std::array<int, 256> counts{};
+  int n = 0;
+  for (int y = crop.y; y < crop.y + crop.height; ++y) {
+    double xl, xr;
+    if (!inner.rowCrossings(y, xl, xr)) continue;
+    const int x0 = std::max(ceilToInt(xl), crop.x), x1 = std::min(floorToInt(xr), crop.x + crop.width - 1);
+    const std::uint8_t* row = grey.ptr<std::uint8_t>(y);
+    for (int x = x0; x <= x1; ++x) ++counts[row[x]];
+    n += std::max(0, x1 - x0 + 1);
+  }
+  if (n < kMinDiskPixels) return false;
+  auto percentile = [&](double share) {
+    const int want = static_cast<int>(share * n);
+    int seen = 0;
+    for (int g = 0; g < 256; ++g)
+      if ((seen += counts[static_cast<std::size_t>(g)]) > want) return static_cast<double>(g);
+    return 255.0;
+  };
+  paper = percentile(0.75);
+  darkest = percentile(0.02);
+  return true;
+}
+
 }  // namespace
 
 Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& detected,
@@ -419,17 +450,28 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
   // Spots are cut at the middle of the crop's two class means rather than at the threshold
   // itself: a minimum-error threshold near one class's level (as under blur) would swell
   // or shrink them, and merge two spots seen close together.
-  const double bright = ws.bright_mean;
+  double dark = ws.dark_mean, bright = ws.bright_mean;
   const double expected =
       M_PI * std::pow(target.spot_radius_mm / target.radius_mm, 2) * detected.a * detected.b;
   std::array<SpotComponent, 2> kept{};
-  darkComponents(grey, crop, inner, levelAt(0.5 * (ws.dark_mean + ws.bright_mean)), ws);
-  const bool chosen = chooseSpots(ws.components, crop.tl(), detected, target, expected, kept, spots.candidates);
+  darkComponents(grey, crop, inner, levelAt(0.5 * (dark + bright)), ws);
+  bool chosen = chooseSpots(ws.components, crop.tl(), detected, target, expected, kept, spots.candidates);
+  // A dim target before a bright scene: the crop's bright class is the scene's, and the
+  // paper falls below the mid level with the spots. The disk's own levels then decide:
+  // its paper and its darkest (the spots, as dark as the card).
+  double paper = 0.0, darkest = 0.0;
+  if (!chosen && diskLevels(grey, crop, inner, paper, darkest) && paper <= 0.5 * (dark + bright) &&
+      paper - darkest >= kMinDiskContrast) {
+    dark = darkest;
+    bright = paper;
+    darkComponents(grey, crop, inner, levelAt(0.5 * (dark + bright)), ws);
+    chosen = chooseSpots(ws.components, crop.tl(), detected, target, expected, kept, spots.candidates);
+  }
   if (!chosen && spots.candidates > 2) return Status::AmbiguousSpots;
   if (!chosen) {
     // Too small or faint to be cut at the mid level: where the geometry puts them.
     std::array<cv::Rect, 2> boxes;
-    if (!spotBoxesByModel(grey, detected, target, bright, ws.dark_mean, boxes)) return Status::SpotsNotFound;
+    if (!spotBoxesByModel(grey, detected, target, bright, dark, boxes)) return Status::SpotsNotFound;
     for (int k = 0; k < 2; ++k)
       kept[k] = {boxes[k].area(), boxes[k].x - crop.x, boxes[k].y - crop.y, boxes[k].x + boxes[k].width - 1 - crop.x,
                  boxes[k].y + boxes[k].height - 1 - crop.y, false};
@@ -516,7 +558,7 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
     // Glare's halo, short of saturation, also lies above the paper round the spot: left out
     // from a fraction of the paper-to-card contrast above it (noise seldom reaches that far).
     glareCut = std::min(kSaturatedGrey,
-                        floorToInt(white + std::max(kGlareAboveLocalGrey, kGlareAboveLocal * (white - ws.dark_mean))));
+                        floorToInt(white + std::max(kGlareAboveLocalGrey, kGlareAboveLocal * (white - dark))));
     glare = brightest > glareCut;
     boxInside = cornersInside && !glare;
     // Weights white - g: summed as integer moments of g (sum g, sum x g, sum y g over n

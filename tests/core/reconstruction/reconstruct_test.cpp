@@ -437,5 +437,29 @@ TEST(OccludedRim, ADarkBlobBesideTheSpotsIsNotTakenForOne) {
   }
 }
 
+// A dim target (paper at grey 90) before a bright scene: the crop's bright class is the
+// scene's, and the paper falls below the middle of the crop's two classes with the spots.
+// The disk's own levels cut the spots.
+TEST(DimTarget, SpotsAreCutAtTheDisksOwnLevels) {
+  Settings s;
+  s.virtual_scene.white_level = 90;
+  s.virtual_scene.black_level = 12;
+  s.virtual_scene.background_level = 250;
+  s.virtual_scene.card_size_mm = 112.0;  // a narrow card: the scene fills the crop's corners
+  s.virtual_scene.noise_sigma = 2.0;
+  s.virtual_scene.blur_sigma_px = 0.8;
+  for (const Pose& pose : {Pose{40.0, 25.0, 30.0, 60.0, -40.0, 900.0}, Pose{-50.0, 10.0, -70.0, -80.0, 30.0, 1400.0}}) {
+    Engine engine(s);
+    Frame frame;
+    renderTarget(s.camera(), s.target, s.virtual_scene, pose, frame.image, 3);
+    FrameResult result;
+    engine.process(frame, result);
+    ASSERT_EQ(result.status, Status::Ok) << statusName(result.status) << " at " << pose.tz_mm << " mm";
+    ASSERT_TRUE(result.pose);
+    EXPECT_LT(rotationErrorDeg(*result.pose, pose), 1.0);
+    EXPECT_LT(positionErrorPercent(pose, *result.pose), 0.5);
+  }
+}
+
 }  // namespace
 }  // namespace imagepro
