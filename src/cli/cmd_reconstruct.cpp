@@ -5,6 +5,7 @@
 #include "cli/command.h"
 #include "cli/enum_options.h"
 #include "cli/frame_input.h"
+#include "cli/option_ranges.h"
 #include "cli/virtual_motion_options.h"
 #include "core/pipeline/data_out.h"
 #include "core/pipeline/engine.h"
@@ -128,7 +129,9 @@ const CommandRegistration kRegistration{{
         "possible poses fit the spots about equally; with --format json both are given as\n"
         "\"candidates\", the better-fitting first) or PoseInconsistent (the pose puts the\n"
         "spots or the rim away from where the image has them). When the two lie within\n"
-        "twice ambiguity_min_deg (5 degrees) of each other, the frame is ok with the pose\n"
+        "twice ambiguity_min_deg (" +
+        numberText(ReconstructionOptions{}.ambiguity_min_deg) +
+        " degrees by default) of each other, the frame is ok with the pose\n"
         "halfway between them, and the JSON gives both as \"candidates\" too.\n"
         "  --truth          add the ground-truth pose columns (virtual frames)\n"
         "  --no-pace        run a camera or virtual source as fast as possible, not at its frame rate\n"

@@ -20,15 +20,16 @@ void checkOptionRanges(const Settings& settings, const std::vector<OptionKey>& o
   throw UsageError("the options give an invalid setting: " + error);
 }
 
+std::string numberText(double v) {
+  char out[32];
+  std::snprintf(out, sizeof out, "%g", v);
+  return out;
+}
+
 std::string rangeText(std::string_view key) {
   const SettingKey* k = findSettingKey(key);
   if (!k) return "?";
-  const auto text = [](double v) {
-    char out[32];
-    std::snprintf(out, sizeof out, "%g", v);
-    return std::string(out);
-  };
-  return text(k->lo) + ".." + text(k->hi);
+  return numberText(k->lo) + ".." + numberText(k->hi);
 }
 
 }  // namespace imagepro::cli

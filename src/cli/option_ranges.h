@@ -21,5 +21,7 @@ void checkOptionRanges(const Settings& settings, const std::vector<OptionKey>& o
 
 // "0..255": the settings table's range of `key`, for --help and messages.
 std::string rangeText(std::string_view key);
+// A number as help texts print it (%g): a default quoted from the options' defaults.
+std::string numberText(double v);
 
 }  // namespace imagepro::cli

@@ -21,10 +21,17 @@ using json = nlohmann::ordered_json;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The methods that threshold a frame. None is the re-threshold's by-pass only: a frame
-// without a threshold has no binary image to search.
-constexpr ThresholdMethod kFrameThresholds[] = {ThresholdMethod::Manual, ThresholdMethod::AtOrig,
-                                                ThresholdMethod::AtMod};
+// The methods that threshold a frame: every one of the enum's table but None, the
+// re-threshold's by-pass only (a frame without a threshold has no binary image to search).
+std::span<const ThresholdMethod> frameThresholds() {
+  static const std::vector<ThresholdMethod> methods = [] {
+    std::vector<ThresholdMethod> all;
+    for (const EnumEntry<ThresholdMethod>& e : enumEntries(ThresholdMethod{}))
+      if (e.value != ThresholdMethod::None) all.push_back(e.value);
+    return all;
+  }();
+  return methods;
+}
 
 // A group of six per-parameter values in the pose's order (Rx, Ry, Rz, Tx, Ty, Tz), the
 // rotations' and the translations' each in their own range.
@@ -139,7 +146,7 @@ void visitSettings(Visitor& v, Settings& s) {
   v.object("pipeline", [&] {
     PipelineOptions& p = s.pipeline;
     v.object("threshold", [&] {
-      v.field("method", p.threshold.method, std::span<const ThresholdMethod>(kFrameThresholds));
+      v.field("method", p.threshold.method, frameThresholds());
       v.field("value", p.threshold.manual_value, 0, 255);
     });
     v.object("binarization", [&] {
