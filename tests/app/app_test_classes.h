@@ -94,6 +94,21 @@ class SourceChangeTest : public QObject {
   std::unique_ptr<MainWindow> window_;
 };
 
+// The plots: one clock per source run, one window for the six charts, stills as points,
+// round tick labels.
+class PlotsTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void init();
+  void cleanup();
+  void fileThenVirtualStartsOneClock();
+  void sixChartsShareOneWindowWithRoundTicks();
+  void aClockThatStartsAgainStartsThePlotsAgain();
+  void stillsArePointsByTheirNumber();
+ private:
+  std::unique_ptr<MainWindow> window_;
+};
+
 // Screenshot and Data Out.
 class OutputTest : public QObject {
   Q_OBJECT

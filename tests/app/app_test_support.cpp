@@ -3,6 +3,7 @@
 #include <QCoreApplication>
 #include <QDir>
 #include <QElapsedTimer>
+#include <QFile>
 #include <QFileDialog>
 #include <QLineEdit>
 #include <QTest>
@@ -24,6 +25,16 @@ double threadCpuMs() {
   return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
 }
 }  // namespace
+
+QString numberedFolder(const QString& name, int n) {
+  const QString samples = QStringLiteral(IMAGEPRO_DATA_DIR "/samples/");
+  const QString dir = scratchDir(name);
+  const QStringList names{QStringLiteral("sample01_facing.png"), QStringLiteral("sample02_clutter.png"),
+                          QStringLiteral("sample03_tilted50.png")};
+  for (int i = 1; i <= n; ++i)
+    QFile::copy(samples + names[(i - 1) % names.size()], QStringLiteral("%1/img%2.png").arg(dir).arg(i));
+  return dir;
+}
 
 bool ProbeApplication::notify(QObject* receiver, QEvent* event) {
   // Only outermost events of the GUI thread: nested ones are part of their parent's time.

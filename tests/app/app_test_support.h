@@ -34,6 +34,10 @@ class ProbeApplication : public QApplication {
 // An empty folder IMAGEPRO_TEST_TMP/app/<name>.
 QString scratchDir(const QString& name);
 
+// A folder IMAGEPRO_TEST_TMP/app/<name> of `n` images img1.png ... imgN.png, the samples
+// facing, clutter and tilted in turn.
+QString numberedFolder(const QString& name, int n);
+
 // Processes events until the shown frame satisfies `pred` (false after `ms`).
 bool waitForFrame(MainWindow& window, const std::function<bool(const FrameResult&)>& pred, int ms = 15000);
 // Until the worker runs with settings satisfying `pred`.

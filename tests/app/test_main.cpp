@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   imagepro::app::test::VirtualTest virtual_source;
   imagepro::app::test::FileTest files;
   imagepro::app::test::SourceChangeTest source_change;
+  imagepro::app::test::PlotsTest plots;
   imagepro::app::test::OutputTest outputs;
   imagepro::app::test::SettingsFileTest settings;
   imagepro::app::test::CalibrationWizardTest calibration;
@@ -34,7 +35,7 @@ int main(int argc, char** argv) {
   imagepro::app::test::D0DialogTest d0_dialog;
   imagepro::app::test::CommandLineTest command_line;
   for (QObject* t : std::initializer_list<QObject*>{&panels, &worker, &virtual_source, &files, &source_change,
-                                                      &outputs, &settings, &calibration, &analysis, &camera_settings,
+                                                      &plots, &outputs, &settings, &calibration, &analysis, &camera_settings,
                                                       &calibration_check, &d0_dialog, &command_line})
     failed += QTest::qExec(t, argc, argv);
   return failed == 0 ? 0 : 1;

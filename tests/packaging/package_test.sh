@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # The Debian package as a user gets it: CPack builds it from the build tree, dpkg-deb
 # unpacks it into a scratch root (no install, no source or build tree in reach), and
-# from there the programs run, find their data and print the version; the package's
+# from there the programs run, find their data and print the version, and Debian's
+# python3 imports the Python module from where the package puts it; the package's
 # name, dependencies and desktop entry are checked.
-# usage: package_test.sh BUILD_DIR VERSION
+# usage: package_test.sh BUILD_DIR VERSION [python|no-python]
 set -euo pipefail
-build_dir="$(cd "$1" && pwd)" version="$2"
+build_dir="$(cd "$1" && pwd)" version="$2" python="${3:-no-python}"
 fail() { echo "FAILED: $*" >&2; exit 1; }
 for tool in cpack:cmake dpkg-deb:dpkg dpkg-shlibdeps:dpkg-dev desktop-file-validate:desktop-file-utils; do
   command -v "${tool%%:*}" >/dev/null || fail "${tool%%:*} is missing (Debian package ${tool##*:}; tools/setup.sh installs it)"
@@ -25,6 +26,12 @@ depends="$(dpkg-deb -f "$deb" Depends)"
 for lib in libqt6widgets6 libopencv-core libstdc++6; do
   [[ "$depends" == *"$lib"* ]] || fail "Depends lacks $lib: $depends"
 done
+if [ "$python" = python ]; then
+  # The Python version the module was built for, and numpy.
+  for dep in "python3 (>= " "python3 (<< " python3-numpy; do
+    [[ "$depends" == *"$dep"* ]] || fail "Depends lacks $dep: $depends"
+  done
+fi
 [ "$(dpkg-deb -f "$deb" Section)" = science ] || fail "Section: $(dpkg-deb -f "$deb" Section)"
 [ -n "$(dpkg-deb -f "$deb" Maintainer)" ] || fail "no Maintainer"
 
@@ -69,4 +76,25 @@ desktop="$usr/share/applications/imagepro.desktop"
 desktop-file-validate "$desktop" || fail "desktop-file-validate $desktop"
 grep -qx 'Exec=imagepro %F' "$desktop" || fail "Exec: $(grep ^Exec "$desktop")"
 [ -f "$usr/share/icons/hicolor/scalable/apps/imagepro.svg" ] || fail "no scalable icon"
+# The Python module: in the folder Debian's python3 searches, and imported from there by
+# that python3 (the unpacked copy of the folder put first on its path), outside the
+# build tree; a pose reconstructed through it.
+if [ "$python" = python ]; then
+  dist="$usr/lib/python3/dist-packages"
+  set -- "$dist"/imagepro.*.so
+  [ -f "$1" ] || fail "no imagepro module in usr/lib/python3/dist-packages: $(dpkg-deb -c "$deb" | grep -i python || true)"
+  /usr/bin/python3 -c 'import sys; sys.exit("/usr/lib/python3/dist-packages" not in sys.path)' ||
+    fail "Debian's python3 does not search /usr/lib/python3/dist-packages"
+  missing="$(ldd "$1" | grep 'not found' || true)"
+  [ -z "$missing" ] || fail "$(basename "$1"): libraries not found: $missing"
+  env -u PYTHONHOME PYTHONPATH="$dist" /usr/bin/python3 -c '
+import sys, imagepro
+assert imagepro.__file__.startswith(sys.argv[1]), imagepro.__file__
+assert imagepro.__version__ == sys.argv[2], imagepro.__version__
+settings = imagepro.Settings()
+truth = imagepro.Pose(rx_deg=10, ry_deg=-20, rz_deg=30, tx_mm=20, ty_mm=-10, tz_mm=900)
+result = imagepro.reconstruct(imagepro.render(truth, settings), settings)
+assert result.pose is not None and result.pose.rotation_error_deg(truth) < 1.0, result
+' "$dist/" "$version" >"$scratch/python.txt" 2>&1 || fail "import imagepro from the package: $(tail -5 "$scratch/python.txt")"
+fi
 echo "package: $(basename "$deb"), $(du -k "$deb" | cut -f1) KB, runs unpacked"

@@ -222,6 +222,7 @@ void MainWindow::connectWorker() {
     for (const QString& p : paths) recent_->add(p);
     control_panel_->sourcePanel()->setFileCount(images);
     banner_->hide();
+    plots_->clear();  // other images: their numbers are not the list's before
   });
   connect(worker_, &Worker::filesFailed, this, [this](const QStringList& paths) {
     for (const QString& p : paths) recent_->remove(p);

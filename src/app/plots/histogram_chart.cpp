@@ -10,6 +10,7 @@
 #include <algorithm>
 
 #include "app/plots/chart_view.h"
+#include "app/plots/round_ticks.h"
 
 namespace imagepro::app {
 
@@ -26,12 +27,11 @@ HistogramChart::HistogramChart(QWidget* parent)
   chart_->addSeries(area);
   chart_->addSeries(marker_);
   auto* x = new QValueAxis;
-  x->setRange(0, 255);
-  x->setLabelFormat(QStringLiteral("%d"));
+  setRoundTicks(x, 0.0, 255.0, 50.0);
   x->setTitleText(tr("grey level"));
   chart_->addAxis(x, Qt::AlignBottom);
   chart_->addAxis(y_, Qt::AlignLeft);
-  y_->setLabelFormat(QStringLiteral("%d"));
+  setRoundTicks(y_, 0.0, 1.0, 1.0);
   for (QAbstractSeries* s : {static_cast<QAbstractSeries*>(area), static_cast<QAbstractSeries*>(marker_)}) {
     s->attachAxis(x);
     s->attachAxis(y_);
@@ -49,9 +49,12 @@ void HistogramChart::setHistogram(const Histogram& histogram, int threshold) {
     peak = std::max(peak, histogram[static_cast<std::size_t>(g)]);
   }
   counts_->replace(points);
-  y_->setRange(0, peak * 1.05);
+  // The count axis up to a round number above the peak, in round steps.
+  const double step = roundStep(peak * 1.05, 4, 1.0);
+  const double top = roundOutward(0.0, peak * 1.05, step).hi;
+  setRoundTicks(y_, 0.0, top, step);
   threshold_ = threshold;
-  if (threshold >= 0) marker_->replace({QPointF(threshold, 0), QPointF(threshold, peak * 1.05)});
+  if (threshold >= 0) marker_->replace({QPointF(threshold, 0), QPointF(threshold, top)});
   else marker_->clear();
   chart_->setTitle(threshold >= 0 ? tr("Histogram of the searched region, threshold %1").arg(threshold)
                                   : tr("Histogram of the searched region"));

@@ -7,14 +7,18 @@
 #include <QHBoxLayout>
 #include <QLineSeries>
 #include <QPushButton>
+#include <QScatterSeries>
 #include <QTimer>
 #include <QVBoxLayout>
 #include <QValueAxis>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 
+#include "app/plots/round_ticks.h"
 #include "core/common/atomic_file.h"
 #include "core/pipeline/frame_record.h"
 #include "core/common/pose_csv.h"
@@ -23,8 +27,10 @@ namespace imagepro::app {
 
 namespace {
 
-constexpr std::size_t kShown = 400;           // points on screen per series
+constexpr std::size_t kShown = 400;  // points on screen per series at most
+constexpr std::size_t kFewForLine = 30;  // below this many samples each is a marker too
 constexpr int kRedrawMs = 200;
+const QColor kMeasured(30, 110, 220);
 
 const char* const kTitles[6] = {"Rx [deg]", "Ry [deg]", "Rz [deg]", "Tx [mm]", "Ty [mm]", "Tz [mm]"};
 
@@ -45,26 +51,28 @@ PosePlots::PosePlots(QWidget* parent) : QWidget(parent), pause_(new QPushButton(
     p.chart->legend()->hide();
     p.chart->setMargins(QMargins(2, 2, 2, 2));
     p.measured = new QLineSeries;
+    p.points = new QScatterSeries;
     p.truth = new QLineSeries;
     QPen truth_pen(QColor(120, 120, 120));
     truth_pen.setStyle(Qt::DashLine);
     p.truth->setPen(truth_pen);
-    p.measured->setPen(QPen(QColor(30, 110, 220), 1.5));
+    p.measured->setPen(QPen(kMeasured, 1.5));
+    p.points->setMarkerSize(7.0);
+    p.points->setColor(kMeasured);
+    p.points->setBorderColor(kMeasured);
     p.chart->addSeries(p.truth);
     p.chart->addSeries(p.measured);
+    p.chart->addSeries(p.points);
     p.x = new QValueAxis;
     p.y = new QValueAxis;
     QFont small = p.chart->font();
     small.setPointSizeF(std::max(6.0, small.pointSizeF() * 0.8));
-    p.x->setTickCount(3);
-    p.y->setTickCount(3);
-    p.y->setLabelFormat(QStringLiteral("%.1f"));
     p.x->setLabelsFont(small);
     p.y->setLabelsFont(small);
     p.chart->setTitleFont(small);
     p.chart->addAxis(p.x, Qt::AlignBottom);
     p.chart->addAxis(p.y, Qt::AlignLeft);
-    for (QLineSeries* s : {p.measured, p.truth}) {
+    for (QXYSeries* s : std::initializer_list<QXYSeries*>{p.measured, p.points, p.truth}) {
       s->setUseOpenGL(false);
       s->attachAxis(p.x);
       s->attachAxis(p.y);
@@ -105,11 +113,16 @@ PosePlots::PosePlots(QWidget* parent) : QWidget(parent), pause_(new QPushButton(
     if (next_plot_ == 0) {
       if (!dirty_) return;
       dirty_ = false;
+      shown_ = whatIsShown();
+      // All six move to the round's window at once; the samples follow one plot per tick,
+      // placed by their own times, so no plot shows another window than the others.
+      for (Plot& p : plots_) setXTicks(p, shown_);
     }
-    redrawPlot(next_plot_, shownRange());
+    redrawPlot(next_plot_, shown_);
     next_plot_ = (next_plot_ + 1) % static_cast<int>(plots_.size());
   });
   redraw_timer_->start(kRedrawMs / static_cast<int>(plots_.size()));  // at most five rounds a second
+  redraw();
 }
 
 bool PosePlots::isPaused() const { return pause_->isChecked(); }
@@ -117,10 +130,16 @@ void PosePlots::setPaused(bool paused) { pause_->setChecked(paused); }
 
 void PosePlots::append(const std::vector<PoseSample>& samples) {
   if (samples.empty()) return;
-  if (recorded_.size() + samples.size() > kMaxRecorded)
-    recorded_.erase(recorded_.begin(), recorded_.begin() + static_cast<std::ptrdiff_t>(
-                                                                std::min(recorded_.size(), samples.size() + kMaxRecorded / 10)));
-  recorded_.insert(recorded_.end(), samples.begin(), samples.end());
+  for (const PoseSample& s : samples) {
+    // One clock per run: time running backwards (a camera started anew, a video played
+    // again) or stills after timed frames, or the other way, begin another run.
+    if (!recorded_.empty() && (s.still != recorded_.back().still ||
+                               (!s.still && s.timestamp_s < recorded_.back().timestamp_s)))
+      recorded_.clear();
+    if (recorded_.size() >= kMaxRecorded)
+      recorded_.erase(recorded_.begin(), recorded_.begin() + static_cast<std::ptrdiff_t>(kMaxRecorded / 10));
+    recorded_.push_back(s);
+  }
   dirty_ = true;
 }
 
@@ -130,58 +149,88 @@ void PosePlots::clear() {
   redraw();
 }
 
-PosePlots::ShownRange PosePlots::shownRange() const {
-  ShownRange r;
-  r.first = recorded_.size() > kShown ? recorded_.size() - kShown : 0;
-  // Files carry no capture times: their samples are placed by frame number instead.
-  for (std::size_t k = r.first; k < recorded_.size() && !r.timed; ++k)
-    r.timed = recorded_[k].timestamp_s != recorded_[r.first].timestamp_s;
-  const auto x_of = [&r](const PoseSample& s) { return r.timed ? s.timestamp_s : static_cast<double>(s.index); };
-  r.x0 = r.first < recorded_.size() ? x_of(recorded_[r.first]) : 0.0;
-  r.x1 = recorded_.empty() ? 1.0 : x_of(recorded_.back());
-  r.few = recorded_.size() - r.first < 30;
-  return r;
+PosePlots::Shown PosePlots::whatIsShown() const {
+  Shown shown;
+  if (recorded_.empty()) {
+    shown.step = roundStep(kWindowS, 4);
+    return shown;
+  }
+  if (recorded_.back().still) {
+    // Images by number (1 for the first, as the title counts them), the latest result
+    // of each: an image processed again with other options replaces its point.
+    shown.still = shown.markers = true;
+    std::map<std::int64_t, std::size_t> latest;
+    const std::size_t from = recorded_.size() > kShown ? recorded_.size() - kShown : 0;
+    for (std::size_t k = from; k < recorded_.size(); ++k) latest[recorded_[k].index] = k;
+    for (const auto& [index, k] : latest) shown.samples.push_back(k);
+    shown.x0 = static_cast<double>(latest.begin()->first) + 0.5;
+    shown.x1 = static_cast<double>(latest.rbegin()->first) + 1.5;
+    shown.step = roundStep(shown.x1 - shown.x0, 5, 1.0);
+    return shown;
+  }
+  // The run's first kWindowS seconds, then the last kWindowS seconds.
+  const double t_first = recorded_.front().timestamp_s, t_last = recorded_.back().timestamp_s;
+  shown.x0 = std::max(t_first, t_last - kWindowS);
+  shown.x1 = shown.x0 + kWindowS;
+  shown.step = roundStep(kWindowS, 4);
+  const auto first = std::lower_bound(recorded_.begin(), recorded_.end(), shown.x0,
+                                      [](const PoseSample& s, double t) { return s.timestamp_s < t; });
+  const auto begin = static_cast<std::size_t>(first - recorded_.begin());
+  const std::size_t count = recorded_.size() - begin;
+  // Thinned by frame number, so that the same frames stay on screen as the window moves.
+  const auto stride = static_cast<std::int64_t>((count + kShown - 1) / kShown);
+  for (std::size_t k = begin; k < recorded_.size(); ++k)
+    if (recorded_[k].index % stride == 0 || k + 1 == recorded_.size()) shown.samples.push_back(k);
+  shown.markers = count < kFewForLine;
+  return shown;
 }
 
 void PosePlots::redraw() {
   dirty_ = false;
   next_plot_ = 0;
-  const ShownRange range = shownRange();
-  for (int i = 0; i < static_cast<int>(plots_.size()); ++i) redrawPlot(i, range);
+  shown_ = whatIsShown();
+  for (Plot& p : plots_) setXTicks(p, shown_);
+  for (int i = 0; i < static_cast<int>(plots_.size()); ++i) redrawPlot(i, shown_);
 }
 
-void PosePlots::redrawPlot(int i, const ShownRange& r) {
-  const auto x_of = [&r](const PoseSample& s) { return r.timed ? s.timestamp_s : static_cast<double>(s.index); };
+void PosePlots::redrawPlot(int i, const Shown& shown) {
   Plot& p = plots_[static_cast<std::size_t>(i)];
   QList<QPointF> measured, truth;
-  measured.reserve(static_cast<qsizetype>(recorded_.size() - r.first));
+  measured.reserve(static_cast<qsizetype>(shown.samples.size()));
   double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
-  for (std::size_t k = r.first; k < recorded_.size(); ++k) {
+  for (std::size_t k : shown.samples) {
     const PoseSample& s = recorded_[k];
+    const double x = shown.still ? static_cast<double>(s.index + 1) : s.timestamp_s;
     if (s.pose) {
       const double v = component(*s.pose, i);
-      measured.append({x_of(s), v});
+      measured.append({x, v});
       lo = std::min(lo, v);
       hi = std::max(hi, v);
     }
     if (s.truth) {
       const double v = component(*s.truth, i);
-      truth.append({x_of(s), v});
+      truth.append({x, v});
       lo = std::min(lo, v);
       hi = std::max(hi, v);
     }
   }
-  p.measured->replace(measured);
+  // Stills are points, not a line through the images; a run's first frames are both.
+  p.measured->replace(shown.still ? QList<QPointF>{} : measured);
+  p.points->replace(shown.markers ? measured : QList<QPointF>{});
   p.truth->replace(truth);
-  p.measured->setPointsVisible(r.few);  // a lone file's pose is a point, not a line
   if (lo > hi) {
     lo = -1.0;
     hi = 1.0;
   }
   const double pad = std::max(0.5, 0.08 * (hi - lo));
-  p.y->setRange(lo - pad, hi + pad);
-  p.x->setRange(r.x0 - (r.timed ? 0.0 : 0.5), std::max(r.x1, r.x0 + 1.0) + (r.timed ? 0.0 : 0.5));
-  p.x->setLabelFormat(r.timed ? QStringLiteral("%.0f s") : QStringLiteral("#%.0f"));
+  const double y_step = roundStep(hi - lo + 2.0 * pad, 4);
+  const AxisRange y = roundOutward(lo - pad, hi + pad, y_step);
+  setRoundTicks(p.y, y.lo, y.hi, y_step);
+}
+
+void PosePlots::setXTicks(Plot& p, const Shown& shown) {
+  if (shown.still) setRoundTicks(p.x, shown.x0, shown.x1, shown.step, QStringLiteral("#"));
+  else setRoundTicks(p.x, shown.x0, shown.x1, shown.step, {}, QStringLiteral(" s"));
 }
 
 bool PosePlots::exportCsv(const QString& path, QString& error) const {

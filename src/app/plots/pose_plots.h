@@ -1,7 +1,10 @@
 #pragma once
 // Live plots of the six parameters over time (Qt Charts), with the ground truth of
 // virtual frames beside them; pause freezes the view (recording goes on), export
-// writes everything recorded as CSV.
+// writes everything recorded as CSV. The six share one window on one clock: the last
+// kWindowS seconds of the source's run, or the images of a list by their number, each
+// still a point. A clock that starts again (a camera started anew, another file) or
+// samples of another kind start the recording again.
 #include <QWidget>
 
 #include <array>
@@ -11,6 +14,7 @@
 
 class QChart;
 class QLineSeries;
+class QScatterSeries;
 class QValueAxis;
 class QPushButton;
 class QTimer;
@@ -26,6 +30,8 @@ class PosePlots : public QWidget {
   // The recording's bound (about two hours at 25 Hz, 27 MB): past it the oldest tenth
   // goes, so a long run's memory levels off there.
   static constexpr std::size_t kMaxRecorded = 200000;
+  // The time window of a running source, seconds.
+  static constexpr double kWindowS = 20.0;
 
   void append(const std::vector<PoseSample>& samples);
   void clear();
@@ -40,27 +46,30 @@ class PosePlots : public QWidget {
   void error(const QString& text);
 
  private:
-  // The recorded samples on screen: the last kShown, placed by time or frame number.
-  struct ShownRange {
-    std::size_t first = 0;
-    bool timed = false;
-    double x0 = 0.0, x1 = 1.0;
-    bool few = true;
+  // What one round of redraws shows, the same for all six plots.
+  struct Shown {
+    std::vector<std::size_t> samples;  // the recorded samples drawn, in x order
+    bool still = false;                // images of a list: x is the image's number
+    bool markers = false;              // each sample a marker: stills, or too few for a line
+    double x0 = 0.0, x1 = kWindowS, step = 5.0;
   };
-  ShownRange shownRange() const;
+  Shown whatIsShown() const;
   void redraw();  // every plot at once
-  void redrawPlot(int i, const ShownRange& range);
+  void redrawPlot(int i, const Shown& shown);
   void exportInteractive();
 
   struct Plot {
     QChart* chart = nullptr;
     QLineSeries* measured = nullptr;
+    QScatterSeries* points = nullptr;  // the measured samples as markers
     QLineSeries* truth = nullptr;
     QValueAxis* x = nullptr;
     QValueAxis* y = nullptr;
   };
+  static void setXTicks(Plot& p, const Shown& shown);
   std::array<Plot, 6> plots_;
   std::vector<PoseSample> recorded_;
+  Shown shown_;  // the current round's
   QPushButton* pause_;
   QTimer* redraw_timer_;
   bool dirty_ = false;

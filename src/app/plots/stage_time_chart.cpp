@@ -11,6 +11,7 @@
 #include <algorithm>
 
 #include "app/plots/chart_view.h"
+#include "app/plots/round_ticks.h"
 
 namespace imagepro::app {
 
@@ -28,8 +29,7 @@ StageTimeChart::StageTimeChart(QWidget* parent) : QWidget(parent), chart_(new QC
   chart_->addAxis(category, Qt::AlignLeft);
   series->attachAxis(category);
   axis_->setTitleText(tr("microseconds"));
-  axis_->setLabelFormat(QStringLiteral("%d"));
-  axis_->setRange(0, range_);
+  showRange();
   chart_->addAxis(axis_, Qt::AlignBottom);
   series->attachAxis(axis_);
   chart_->legend()->setAlignment(Qt::AlignBottom);
@@ -43,8 +43,13 @@ void StageTimeChart::setTimes(const StageTimes& times) {
   // Grow at once, shrink slowly, so the bar does not jump about.
   if (total_ > range_) range_ = total_ * 1.2;
   else if (total_ < range_ * 0.4) range_ = std::max(10.0, range_ * 0.9);
-  axis_->setRange(0, range_);
+  showRange();
   chart_->setTitle(tr("Time per stage: %1 us total").arg(total_, 0, 'f', 0));
+}
+
+void StageTimeChart::showRange() {
+  const double step = roundStep(range_, 5, 1.0);
+  setRoundTicks(axis_, 0.0, roundOutward(0.0, range_, step).hi, step);
 }
 
 }  // namespace imagepro::app

@@ -21,6 +21,7 @@ class StageTimeChart : public QWidget {
   double shownTotalUs() const { return total_; }
 
  private:
+  void showRange();  // the axis to range_ rounded up, in round steps
   QChart* chart_;
   std::array<QBarSet*, kStageCount> sets_{};
   QValueAxis* axis_;

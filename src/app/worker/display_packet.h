@@ -24,6 +24,7 @@ struct PoseSample {
   Status status = Status::Ok;
   std::optional<Pose> pose;
   std::optional<Pose> truth;
+  bool still = false;  // an image of a list (no clock): plotted by its number, not by time
 };
 
 struct DisplayPacket {

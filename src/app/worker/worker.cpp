@@ -482,7 +482,8 @@ void Worker::afterFrame() {
   }
 
   if (history_.size() >= kMaxHistory) history_.erase(history_.begin(), history_.begin() + kMaxHistory / 2);
-  history_.push_back({result_.index, result_.timestamp_s, result_.status, result_.pose, result_.truth});
+  history_.push_back({result_.index, result_.timestamp_s, result_.status, result_.pose, result_.truth,
+                      imageList() != nullptr});
 
   if (data_out_.isOpen()) {
     std::string error;

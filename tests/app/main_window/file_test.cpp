@@ -94,15 +94,6 @@ void FileTest::folderIsInNaturalOrder() {
 namespace {
 
 // A folder of `n` sample frames named img1.png ... imgN.png.
-QString numberedFolder(const QString& name, int n) {
-  const QString dir = scratchDir(name);
-  const QStringList samples{QStringLiteral("sample01_facing.png"), QStringLiteral("sample02_clutter.png"),
-                            QStringLiteral("sample03_tilted50.png")};
-  for (int i = 1; i <= n; ++i)
-    QFile::copy(kSamples + samples[(i - 1) % samples.size()], QStringLiteral("%1/img%2.png").arg(dir).arg(i));
-  return dir;
-}
-
 bool shows(MainWindow& w, const char* name) {
   return waitForFrame(w, [name](const FrameResult& r) { return r.name == name; }, 10000);
 }
