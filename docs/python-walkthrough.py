@@ -19,8 +19,12 @@
 # PYTHONPATH=build/python /usr/bin/python3 -c "import imagepro; print(imagepro.__version__)"
 # ```
 #
+# The Debian package (`tools/setup.sh package`, README) holds it in
+# `/usr/lib/python3/dist-packages`, so `apt install ./build/package/imagepro_*.deb` gives
+# `import imagepro` for Debian's `python3`; the package is built with the module when the
+# module is built for `/usr/bin/python3`. Without the package,
 # `cmake --install build --component python` puts it where Debian's `python3` finds it:
-# `/usr/lib/python3/dist-packages` under the prefix `/usr` (a package),
+# `/usr/lib/python3/dist-packages` under the prefix `/usr`,
 # `lib/python3.X/dist-packages` under another (`/usr/local`). ctest runs its tests,
 # `tests/python/` (pytest).
 #
