@@ -56,7 +56,7 @@ double fraction(const Args& args, const std::string& key, double fallback) {
   return v;
 }
 
-// --webcam sets issue 35's shares; --occluders, --glare and --dim each override one.
+// --webcam sets the webcam set's shares; --occluders, --glare and --dim each override one.
 RigEffects rigEffects(const Args& args) {
   const RigEffects base = args.has("webcam") ? kWebcamRigEffects : RigEffects{};
   return {fraction(args, "occluders", base.occluder_fraction), fraction(args, "glare", base.glare_fraction),

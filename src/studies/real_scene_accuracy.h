@@ -70,7 +70,7 @@ bool runRealSceneStudy(const Settings& settings, const RealSceneStudyOptions& op
 std::string realSceneSection(const Settings& settings, const RealSceneStudyOptions& options,
                              const RealSceneStudy& study);
 
-// The webcam set's section (issue 35): stills and negatives with options.rig's effects seen
+// The webcam set's section: stills and negatives with options.rig's effects seen
 // through `settings`' camera (a wide lens), target and marker side by side, and the stills'
 // misses by effect. `config` names the settings file the command was given.
 std::string webcamSection(const Settings& settings, const std::string& config, const RealSceneStudyOptions& options,

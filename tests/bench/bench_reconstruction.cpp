@@ -1,4 +1,4 @@
-// Reconstruction stage speed (issue 4 goal: crop to pose <= 50 us per frame on one core):
+// Reconstruction stage speed (goal: crop to pose <= 50 us per frame on one core):
 // crop + re-threshold + contour + spots + distortion correction + fit + pose, per contour
 // mode and target distance, on grey 640x480 frames with noise, blur and the thesis camera's
 // distortion; and its parts.

@@ -1,6 +1,6 @@
 // imagepro-cli render as a user runs it for real scenes (--scene real | video): frames
 // and truth.csv over the photographs of --backgrounds, reproducible by seed, and the
-// render holes of issue 22: options outside the settings file's ranges (or NaN, or
+// render's holes: options outside the settings file's ranges (or NaN, or
 // infinite) refused, and a render killed mid-run leaving frames and truth.csv agreeing.
 #include <fcntl.h>
 #include <gtest/gtest.h>

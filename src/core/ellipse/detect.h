@@ -29,7 +29,7 @@
 // no spots but a found target's, and traces the contour only of an ellipse that holds
 // the spots; detectEllipses fits every path. Two or more targets give AmbiguousTarget
 // (all reported, in path order) unless report_all_targets. Without any target so far, one
-// last try with robust_fit (issue 35): from a pair of dark paths shaped like the spots, the
+// last try with robust_fit: from a pair of dark paths shaped like the spots, the
 // rim's edge pixels are gathered from every path around them, gradient pointing inwards,
 // and fitted by consensus; an occluder that joins the disk to the scene beyond the card
 // leaves the rim no path of its own, only arcs of others, while the spots stay whole

@@ -1,7 +1,7 @@
 #pragma once
 // A few damped Gauss-Newton (Levenberg-Marquardt) steps of the 6-DoF pose after the
 // analytic one (pose.h), against what the image measured: the rim's undistorted sub-pixel
-// edge points and the two spots' undistorted centroids (issue 17).
+// edge points and the two spots' undistorted centroids.
 //
 // Why: the analytic pose takes the plane's normal from the rim's fitted conic, whose five
 // parameters summarise the edge points, and weighs the centre spot in by a rule of thumb

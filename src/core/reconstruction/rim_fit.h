@@ -1,5 +1,5 @@
 #pragma once
-// The rim's ellipse from the points that lie on it (issue 35). The direct fit (thesis 2.6.2)
+// The rim's ellipse from the points that lie on it. The direct fit (thesis 2.6.2)
 // weighs every contour point alike, so an occluder lying across the rim (tape, a clamp, a
 // finger) whose own edge falls inside the band where the rim is searched, or a glare that
 // lifts the paper's level at a crossing, pulls the whole ellipse. fitRim fits every point,

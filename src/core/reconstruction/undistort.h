@@ -48,7 +48,7 @@ enum class LensInverse : std::uint8_t { None, Taylor, Exact, ExactWideLens };
 // "none", "taylor", "exact", "exact-wide-lens": the name the outputs give.
 const char* lensInverseName(LensInverse inverse);
 
-// A wide lens (issue 35): where the Taylor inverse errs by more than this inside the frame,
+// A wide lens: where the Taylor inverse errs by more than this inside the frame,
 // the reconstruction uses the exact inverse without being asked (reconstruct.h). The sub-pixel
 // rim's points scatter by about as much, so a larger error of the correction would show in the
 // pose. The thesis camera's Taylor inverse errs by 0.03 px over 640x480; a 1280x720 webcam

@@ -1,5 +1,5 @@
 #pragma once
-// Photographs behind real-scene frames (issue 17): a folder of JPEG/PNG files, by
+// Photographs behind real-scene frames: a folder of JPEG/PNG files, by
 // default the ~100 sample photographs of Debian's opencv-doc package (offices, a
 // building, a desk, chessboards, ellipses, dot grids), read as 8-bit grey and cut to
 // the camera's size.

@@ -1,5 +1,5 @@
 #pragma once
-// Real-scene frames with exact ground truth (issue 17): the target of the settings,
+// Real-scene frames with exact ground truth: the target of the settings,
 // on its black card, drawn at a known pose over a photograph, then the whole frame
 // put through the imaging conditions of scene_conditions.h.
 //
@@ -14,7 +14,7 @@
 // inside the frame, paper white 170-235 and card black 10-40, with the still
 // conditions of randomStillConditions(). Everything is drawn from (seed, index), so a
 // set is reproducible. A negative is the same draw without the target. A webcam set
-// (issue 35) adds rig effects (rig_effects.h) from a stream of their own.
+// adds rig effects (rig_effects.h) from a stream of their own.
 #include <opencv2/core.hpp>
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// A real-scene video (issue 17): one photograph, the target moving smoothly through it
+// A real-scene video: one photograph, the target moving smoothly through it
 // at 0.4-1.4 m (tilt 5-45 deg, turning, drifting across the frame, its card always
 // wholly inside), the light drifting +-30 % (a global gain and a turning ramp), optical
 // blur 0.8 px, noise sigma 2, JPEG quality 75, and the target hidden for `hidden`

@@ -1,5 +1,5 @@
 #pragma once
-// What a real rig does to the printed target (issue 35), for the real-scene stills: a flat
+// What a real rig does to the printed target, for the real-scene stills: a flat
 // occluder lying across the rim (tape, a clamp, a finger, a cable), a saturating glare on
 // the paper, and a dim room. Occluder and glare lie in the target's plane and are drawn
 // through the camera's projection and lens, after the target (or a reference marker drawn
@@ -21,7 +21,7 @@
 
 namespace imagepro {
 
-// The share of stills that get each effect (0: none, the real-scene stills of issue 17).
+// The share of stills that get each effect (0: none, the plain real-scene stills).
 struct RigEffects {
   double occluder_fraction = 0.0;
   double glare_fraction = 0.0;
@@ -29,7 +29,7 @@ struct RigEffects {
   bool any() const { return occluder_fraction > 0.0 || glare_fraction > 0.0 || dim_fraction > 0.0; }
 };
 
-// The webcam set of issue 35: occluders on half the stills, glare and dim light on 30 %.
+// The webcam set (docs/accuracy.md): occluders on half the stills, glare and dim light on 30 %.
 inline constexpr RigEffects kWebcamRigEffects{0.5, 0.3, 0.3};
 
 // A strip in the target plane (mm) from `from` to `to`, `width_mm` wide, of grey `level`.

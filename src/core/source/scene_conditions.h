@@ -1,5 +1,5 @@
 #pragma once
-// The imaging conditions of a real-scene frame (issue 17): what a webcam does to a
+// The imaging conditions of a real-scene frame: what a webcam does to a
 // scene between the light falling on it and the JPEG it delivers. Applied to the
 // whole frame, target included, in this order: uneven light (a linear ramp in a
 // random direction or a vignette around a random point, brightness scaled by
@@ -47,7 +47,7 @@ struct SceneConditions {
   std::uint64_t noise_seed = 0;
 };
 
-// The still frames' ranges of issue 17: light +-0..40 %, blur 0.5-1.6 px, motion blur
+// The real-scene stills' ranges: light +-0..40 %, blur 0.5-1.6 px, motion blur
 // 2-6 px on a third of the frames, noise sigma 1-6, JPEG quality 40-95.
 SceneConditions randomStillConditions(SceneRandom& random);
 

@@ -1,4 +1,4 @@
-// The default pipeline judged on real scenes (issue 17): the target drawn over
+// The default pipeline judged on real scenes: the target drawn over
 // photographs with uneven light, blur, motion blur, noise and JPEG (core/source/
 // real_scene.h), negatives without it, and a video in which it hides for 12 frames.
 // The figures are printed; the thresholds are what the pipeline achieved when this
