@@ -368,7 +368,7 @@ std::string virtualAccuracyReport(const Settings& settings, int frames, std::uin
     if (isDefault(main.methods[m])) defaultIndex = m;
   const Summary ours = summarise(main.outcomes[defaultIndex], 0, 1e9);
   const Summary aruco = summarise(main.outcomes[markerIndex], 0, 1e9);
-  md += "## Goals (issue 4), thesis camera's distortion corrected, default contour mode (" +
+  md += "## Goals, thesis camera's distortion corrected, default contour mode (" +
         main.methods[defaultIndex].name + ")\n\n";
   md += "| measure | goal | target | ArUco |\n| --- | --- | ---: | ---: |\n";
   md += format("| detection, whole target visible | 100 %% | %.1f %% | %.1f %% |\n", 100.0 * main.detected / main.frames,

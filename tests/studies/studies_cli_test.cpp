@@ -174,7 +174,7 @@ TEST(Studies, AccuracySmokeRunWritesItsReport) {
   ASSERT_TRUE(readWholeFile(out.string(), md, e)) << e;
   EXPECT_EQ(md.rfind("# Accuracy\n", 0), 0u);
   for (const char* part :
-       {"`imagepro-studies accuracy --scene virtual --frames 2 --seed 3`", "## Goals (issue 4)", "| detection, whole target visible |",
+       {"`imagepro-studies accuracy --scene virtual --frames 2 --seed 3`", "## Goals, thesis camera", "| detection, whole target visible |",
         "The same goals per tilt band", "## No lens distortion", "## Thesis camera's lens distortion, corrected",
         "| sub-pixel | 2 |", "| ArUco 4x4 (IPPE) | 2 |", "## The plane normal", "## Lens distortion correction",
         "| thesis camera x 1.0 |"})

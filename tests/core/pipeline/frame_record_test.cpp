@@ -96,8 +96,11 @@ TEST(FrameRecord, EveryFieldIsDescribedAndCarried) {
     EXPECT_NE(f.outputs, 0) << f.name;
     EXPECT_NE(f.value, nullptr) << f.name;
     EXPECT_EQ(!f.label.empty(), (f.outputs & kResultsText) != 0) << f.name;  // a text line needs a label
-    for (std::uint16_t bit = 1; bit <= kResultsText; bit <<= 1)
-      if (f.outputs & bit) EXPECT_TRUE(seen.insert({f.name, bit}).second) << f.name << " twice in one output";
+    for (std::uint16_t bit = 1; bit <= kResultsText; bit <<= 1) {
+      if (f.outputs & bit) {
+        EXPECT_TRUE(seen.insert({f.name, bit}).second) << f.name << " twice in one output";
+      }
+    }
   }
 }
 
