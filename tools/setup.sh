@@ -35,24 +35,30 @@ jobs="${JOBS:-2}"
 
 # libqt6opengl6-dev is only recommended by qt6-base-dev, but Qt6Charts' CMake package
 # needs Qt6OpenGL, and recommends are not installed here.
-# opencv-doc (~96 MB) ships the photographs that real-scene frames are drawn over
-# (its examples/data folder); without it the real-scene tests skip.
+# The studies (src/studies) measure against AprilTag and OpenCV's aruco (contrib).
 # The Python module (src/python) and its tests: pybind11, the system's python3 with numpy
 # and pytest.
 # The package (packaging/, its test): help2man writes imagepro-cli's man page, CPack's DEB
 # generator asks file and dpkg-shlibdeps (dpkg-dev) for the dependencies, and
 # desktop-file-validate checks the desktop entry.
+# What the application itself is built from: all that `run` installs.
 packages=(
   build-essential cmake pkg-config ccache
   qt6-base-dev qt6-charts-dev libqt6opengl6-dev libgl-dev
-  libopencv-dev libopencv-contrib-dev libeigen3-dev nlohmann-json3-dev
-  libv4l-dev libapriltag-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
-  pybind11-dev python3-dev python3-numpy python3-pytest
-  help2man dpkg-dev file desktop-file-utils
+  libopencv-dev libeigen3-dev nlohmann-json3-dev libv4l-dev
 )
-# The photographs serve the tests only: run, which builds no test, goes without them.
-[ "$mode" = run ] || packages+=(opencv-doc)
+# The rest serves the tests, the studies, the Python module and the package: run, which
+# builds none of them, goes without. The photographs (opencv-doc) are the real-scene
+# tests' backgrounds; without them those tests skip.
+if [ "$mode" != run ]; then
+  packages+=(
+    libopencv-contrib-dev libapriltag-dev
+    libgtest-dev libgmock-dev libbenchmark-dev
+    pybind11-dev python3-dev python3-numpy python3-pytest
+    help2man dpkg-dev file desktop-file-utils
+    opencv-doc
+  )
+fi
 # libFuzzer comes with clang's runtime libraries.
 [ "$mode" = fuzz ] && packages+=(clang libclang-rt-14-dev libfuzzer-14-dev)
 
@@ -96,12 +102,18 @@ case "$mode" in
     targets=(--target imagepro_fuzz_targets)
     ;;
 esac
-# run builds only the program it starts: the window, or without a display the headless demo
-# (the same configuration as the other modes, so a later test or build reuses it).
+# run builds only the program it starts: the window, or without a display the headless demo,
+# and configures without the tests and studies, whose packages it did not install. Every
+# other mode asks for them back, so a later test or build in the same folder has them.
 has_display=false
 if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then has_display=true; fi
 if [ "$mode" = run ]; then
   if $has_display; then targets=(--target imagepro); else targets=(--target imagepro-cli); fi
+  mode_options+=(-DIMAGEPRO_BUILD_TESTS=OFF -DIMAGEPRO_BUILD_STUDIES=OFF -DIMAGEPRO_PYTHON=OFF)
+elif [ "$mode" != fuzz ]; then
+  mode_options+=(-DIMAGEPRO_BUILD_TESTS=ON -DIMAGEPRO_BUILD_STUDIES=ON)
+  # The module's own default: on where pybind11 and numpy are (not in a sanitizer build).
+  mode_options+=(-UIMAGEPRO_PYTHON)
 fi
 sanitize_tests="${SANITIZE_TESTS:-all}"
 # The sanitizer builds keep line numbers for their reports (-g1), for which ccache also

@@ -5,6 +5,7 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFileDialog>
+#include <QFileInfo>
 #include <QFormLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
@@ -26,10 +27,17 @@
 #include "app/plots/analysis_plots.h"
 #include "app/main_window/main_window.h"
 #include "app/settings/settings_binder.h"
+#include "app/main_window/dialog_folder.h"
 
 namespace imagepro::app {
 
 namespace {
+
+// A browse button starts at the file already named in its field, else where the user last was.
+QString startIn(const QString& named) {
+  const QFileInfo info(named);
+  return !named.isEmpty() && info.absoluteDir().exists() ? info.absoluteFilePath() : dialogFolder();
+}
 
 constexpr int kPollMs = 50;          // progress bar and live counts
 constexpr int kLiveRedrawEvery = 10;  // polls between live redraws of the two-target charts
@@ -181,15 +189,19 @@ QWidget* AnalysisWindow::buildControls() {
   connect(study_, &QComboBox::currentIndexChanged, this, &AnalysisWindow::updateControls);
   connect(inputs, &QButtonGroup::buttonToggled, this, [this] { updateControls(); });
   connect(browse_, &QPushButton::clicked, this, [this] {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Recorded data-out file"), file_->text(),
+    const QString path = QFileDialog::getOpenFileName(this, tr("Recorded data-out file"), startIn(file_->text()),
                                                       tr("CSV files (*.csv *.txt);;All files (*)"));
-    if (!path.isEmpty()) file_->setText(path);
+    if (path.isEmpty()) return;
+    rememberDialogFolder(path);
+    file_->setText(path);
   });
   connect(still_browse_, &QPushButton::clicked, this, [this] {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Still recording"), still_file_->text(),
+    const QString path = QFileDialog::getOpenFileName(this, tr("Still recording"), startIn(still_file_->text()),
                                                       tr("Recordings (*.csv *.avi *.mp4 *.mkv *.mov *.png *.pgm *.bmp "
                                                          "*.jpg *.tif *.txt);;All files (*)"));
-    if (!path.isEmpty()) still_file_->setText(path);
+    if (path.isEmpty()) return;
+    rememberDialogFolder(path);
+    still_file_->setText(path);
   });
   connect(run_, &QPushButton::clicked, this, [this] {
     if (isBusy()) cancel();

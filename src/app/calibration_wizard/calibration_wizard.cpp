@@ -22,6 +22,7 @@
 #include "app/main_window/owned_dialog.h"
 #include "app/worker/packet_builder.h"
 #include "app/worker/worker.h"
+#include "app/main_window/dialog_folder.h"
 
 namespace imagepro::app {
 
@@ -194,10 +195,10 @@ QString CalibrationWizard::slotStatus(int slot) const {
 
 void CalibrationWizard::chooseImageFile(int slot) {
   const QString path = QFileDialog::getOpenFileName(
-      this, tr("Calibration image %1").arg(slot + 1), last_dir_,
+      this, tr("Calibration image %1").arg(slot + 1), dialogFolder(),
       tr("Images (*.png *.pgm *.ppm *.pnm *.bmp *.jpg *.jpeg *.tif *.tiff);;All files (*)"));
   if (path.isEmpty()) return;
-  last_dir_ = QFileInfo(path).absolutePath();
+  rememberDialogFolder(path);
   openImage(slot, path);
 }
 

@@ -126,7 +126,6 @@ class CalibrationWizard : public QDialog {
   std::array<Slot, kCalibrationSlots> slots_;
   std::map<quint64, int> pending_captures_;  // capture request -> slot
   quint64 next_capture_ = 0;
-  QString last_dir_;
 
   // The run in progress and the slots (with their image generations) it was given.
   QFutureWatcher<CalibrationRunUpdate>* run_ = nullptr;

@@ -16,6 +16,7 @@
 #include "app/calibration_wizard/wizard_widgets.h"
 #include "app/main_window/main_window.h"
 #include "app/main_window/results_text.h"
+#include "app/main_window/dialog_folder.h"
 
 namespace imagepro::app {
 
@@ -126,9 +127,11 @@ QWidget* CalibrationWizard::buildRunColumn() {
   connect(save_, &QPushButton::clicked, this, [this] {
     const QString name = QStringLiteral("camera-calibration-%1.json")
                              .arg(QDateTime::currentDateTime().toString(QStringLiteral("yyyyMMdd-hhmmss")));
-    const QString path = QFileDialog::getSaveFileName(this, tr("Save calibration"), last_dir_ + QLatin1Char('/') + name,
+    const QString path = QFileDialog::getSaveFileName(this, tr("Save calibration"), dialogFolderWith(name),
                                                       tr("Settings (*.json);;All files (*)"));
-    if (!path.isEmpty()) saveCalibration(path);
+    if (path.isEmpty()) return;
+    rememberDialogFolder(path);
+    saveCalibration(path);
   });
   connect(close, &QPushButton::clicked, this, &QDialog::close);
   setRunStatus(tr("Set up one to four images of the pattern, best four turned about +-45 deg about x and y with "

@@ -25,6 +25,7 @@
 #include "app/main_window/results_text.h"
 #include "app/plots/chart_view.h"
 #include "app/worker/worker.h"
+#include "app/main_window/dialog_folder.h"
 #include "core/source/virtual_renderer.h"
 
 namespace imagepro::app {
@@ -146,9 +147,11 @@ D0Dialog::D0Dialog(MainWindow& window) : QDialog(&window), window_(window) {
 
   connect(capture, &QPushButton::clicked, this, &D0Dialog::captureFrame);
   connect(open, &QPushButton::clicked, this, [this] {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Open an image of the target"), QString(),
+    const QString path = QFileDialog::getOpenFileName(this, tr("Open an image of the target"), dialogFolder(),
                                                       tr("Images (*.png *.pgm *.bmp *.jpg *.jpeg *.tif *.tiff);;All files (*)"));
-    if (!path.isEmpty()) openImage(path);
+    if (path.isEmpty()) return;
+    rememberDialogFolder(path);
+    openImage(path);
   });
   connect(render, &QPushButton::clicked, this, &D0Dialog::renderVirtual);
   connect(clear, &QPushButton::clicked, this, &D0Dialog::clearFrames);

@@ -25,6 +25,7 @@
 #include "app/main_window/main_window.h"
 #include "app/main_window/results_text.h"
 #include "app/worker/packet_builder.h"
+#include "app/main_window/dialog_folder.h"
 #include "core/calibration/pattern_document.h"
 #include "core/common/atomic_file.h"
 
@@ -121,9 +122,9 @@ QWidget* IntrinsicsPage::buildPatternBox() {
   connect(kind_, &QComboBox::currentIndexChanged, this, &IntrinsicsPage::onKindChosen);
   connect(write, &QPushButton::clicked, this, [this] {
     const QString path = QFileDialog::getSaveFileName(this, tr("Write pattern"),
-                                                      last_dir_ + QStringLiteral("/grid.pdf"), tr("PDF (*.pdf)"));
+                                                      dialogFolderWith(QStringLiteral("grid.pdf")), tr("PDF (*.pdf)"));
     if (path.isEmpty()) return;
-    last_dir_ = QFileInfo(path).absolutePath();
+    rememberDialogFolder(path);
     writePatternPdf(path);
   });
   return box;
@@ -155,10 +156,10 @@ QWidget* IntrinsicsPage::buildImagesBox() {
 
   connect(add, &QPushButton::clicked, this, [this] {
     const QStringList paths = QFileDialog::getOpenFileNames(
-        this, tr("Images of the grid"), last_dir_,
+        this, tr("Images of the grid"), dialogFolder(),
         tr("Images (*.png *.pgm *.ppm *.pnm *.bmp *.jpg *.jpeg *.tif *.tiff);;All files (*)"));
     if (paths.isEmpty()) return;
-    last_dir_ = QFileInfo(paths.front()).absolutePath();
+    rememberDialogFolder(paths.front());
     addImageFiles(paths);
   });
   connect(capture, &QPushButton::clicked, this, [this] {

@@ -114,7 +114,6 @@ class IntrinsicsPage : public QWidget {
   MainWindow& window_;
   std::vector<Image> images_;
   quint64 next_id_ = 0;
-  QString last_dir_;
 
   QFutureWatcher<IntrinsicsRunUpdate>* run_ = nullptr;
   std::shared_ptr<std::atomic<bool>> run_cancelled_;

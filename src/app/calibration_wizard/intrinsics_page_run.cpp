@@ -17,6 +17,7 @@
 #include "app/calibration_wizard/wizard_widgets.h"
 #include "app/main_window/main_window.h"
 #include "app/main_window/results_text.h"
+#include "app/main_window/dialog_folder.h"
 #include "core/calibration/opencv_camera_file.h"
 
 namespace imagepro::app {
@@ -92,22 +93,28 @@ QWidget* IntrinsicsPage::buildActions() {
 
   connect(set_and_use_, &QPushButton::clicked, this, &IntrinsicsPage::setAndUse);
   connect(save_, &QPushButton::clicked, this, [this] {
-    const QString name = QStringLiteral("/camera-calibration-%1.json")
+    const QString name = QStringLiteral("camera-calibration-%1.json")
                              .arg(QDateTime::currentDateTime().toString(QStringLiteral("yyyyMMdd-hhmmss")));
-    const QString path = QFileDialog::getSaveFileName(this, tr("Save calibration"), last_dir_ + name,
+    const QString path = QFileDialog::getSaveFileName(this, tr("Save calibration"), dialogFolderWith(name),
                                                       tr("Settings (*.json);;All files (*)"));
-    if (!path.isEmpty()) saveCalibration(path);
+    if (path.isEmpty()) return;
+    rememberDialogFolder(path);
+    saveCalibration(path);
   });
   connect(export_, &QPushButton::clicked, this, [this] {
     const QString path = QFileDialog::getSaveFileName(this, tr("Export OpenCV camera"),
-                                                      last_dir_ + QStringLiteral("/camera.yaml"),
+                                                      dialogFolderWith(QStringLiteral("camera.yaml")),
                                                       tr("OpenCV camera (*.yaml *.yml *.json);;All files (*)"));
-    if (!path.isEmpty()) exportOpenCvCamera(path);
+    if (path.isEmpty()) return;
+    rememberDialogFolder(path);
+    exportOpenCvCamera(path);
   });
   connect(import, &QPushButton::clicked, this, [this] {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Import OpenCV camera"), last_dir_,
+    const QString path = QFileDialog::getOpenFileName(this, tr("Import OpenCV camera"), dialogFolder(),
                                                       tr("OpenCV camera (*.yaml *.yml *.json);;All files (*)"));
-    if (!path.isEmpty()) importOpenCvCamera(path);
+    if (path.isEmpty()) return;
+    rememberDialogFolder(path);
+    importOpenCvCamera(path);
   });
   connect(close, &QPushButton::clicked, this, &IntrinsicsPage::closeRequested);
   return row;

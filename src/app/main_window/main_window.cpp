@@ -33,6 +33,7 @@
 #include "app/panels/source_panel.h"
 #include "app/plots/stage_time_chart.h"
 #include "app/worker/worker.h"
+#include "app/main_window/dialog_folder.h"
 
 // The resources live in the imagepro_app static library: make sure they are linked in.
 static void initImageProResources() { Q_INIT_RESOURCE(imagepro); }
@@ -355,17 +356,7 @@ void MainWindow::stepFile(FileStep step) {
   if (control_panel_->sourcePanel()->kind() == SourceKind::File) worker_->stepFile(step);
 }
 
-void MainWindow::rememberDirectory(const QString& path) {
-  if (path.isEmpty()) return;
-  const QFileInfo info(path);
-  last_dir_ = info.isDir() ? info.absoluteFilePath() : info.absolutePath();
-  QSettings().setValue(QStringLiteral("lastDirectory"), last_dir_);  // where the next run starts too
-}
-
-QString MainWindow::dialogDirectory() const {
-  if (!last_dir_.isEmpty() && QFileInfo(last_dir_).isDir()) return last_dir_;
-  return QDir::homePath();
-}
+QString MainWindow::dialogDirectory() const { return dialogFolder(); }
 
 QString MainWindow::bannerText() const { return banner_->text(); }
 
@@ -392,7 +383,6 @@ void MainWindow::restoreLayout() {
     });
   }
   control_panel_->restoreState(store);
-  last_dir_ = store.value(QStringLiteral("lastDirectory")).toString();
   setFreezeOnScreenshot(store.value(QStringLiteral("screenshot/freeze"), false).toBool());
 }
 

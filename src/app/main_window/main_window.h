@@ -82,7 +82,7 @@ class MainWindow : public QMainWindow {
   QString resultsText() const;
   QString lastError() const { return last_error_; }
   QString bannerText() const;  // the error banner's text while it shows, else empty
-  // Where the file dialogs start: the folder the user last chose, or the home folder.
+  // Where the file dialogs start (dialog_folder.h).
   QString dialogDirectory() const;
   QString dataOutPath() const { return data_out_path_; }
   QStringList recentPaths() const;
@@ -116,7 +116,6 @@ class MainWindow : public QMainWindow {
   // The selected source has no frame yet: the last source's frame, numbers, status and
   // plots go, and the frame view says `why`.
   void clearShownResults(const QString& why);
-  void rememberDirectory(const QString& path);
   // Interactive versions with dialogs.
   void openDialog(bool folder);
   void saveSettingsDialog();
@@ -156,7 +155,6 @@ class MainWindow : public QMainWindow {
   bool readouts_dirty_ = false;
   QString last_error_;
   QString data_out_path_;
-  QString last_dir_;
   std::int64_t packets_shown_ = 0;
   QAction* freeze_action_ = nullptr;
   bool frozen_for_screenshot_ = false;

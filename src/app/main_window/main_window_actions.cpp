@@ -25,6 +25,7 @@
 #include "app/settings/settings_dialog.h"
 #include "app/panels/source_panel.h"
 #include "app/worker/worker.h"
+#include "app/main_window/dialog_folder.h"
 #include "core/common/data_directory.h"
 
 namespace imagepro::app {
@@ -44,7 +45,7 @@ void MainWindow::buildMenus() {
   QMenu* recent_menu = file->addMenu(tr("&Recent"));
   recent_ = new RecentFiles(recent_menu, this);
   connect(recent_, &RecentFiles::chosen, this, [this](const QString& path) {
-    rememberDirectory(path);
+    rememberDialogFolder(path);
     openPaths({path});
   });
   file->addSeparator();
@@ -140,12 +141,12 @@ void MainWindow::showKeys() {
 void MainWindow::openDialog(bool folder) {
   QStringList paths;
   if (folder) {
-    const QString dir = QFileDialog::getExistingDirectory(this, tr("Open an image folder"), dialogDirectory());
+    const QString dir = QFileDialog::getExistingDirectory(this, tr("Open an image folder"), dialogFolder());
     if (!dir.isEmpty()) paths << dir;
   } else {
-    paths = QFileDialog::getOpenFileNames(this, tr("Open images"), dialogDirectory(), kImageFilter);
+    paths = QFileDialog::getOpenFileNames(this, tr("Open images"), dialogFolder(), kImageFilter);
   }
-  if (!paths.isEmpty()) rememberDirectory(paths.front());
+  if (!paths.isEmpty()) rememberDialogFolder(paths.front());
   openPaths(paths);
 }
 
@@ -228,16 +229,16 @@ bool MainWindow::mayLoseCalibration() {
 
 void MainWindow::saveSettingsDialog() {
   const QString path = QFileDialog::getSaveFileName(
-      this, tr("Save settings"), dialogDirectory() + QStringLiteral("/settings.json"), kSettingsFilter);
+      this, tr("Save settings"), dialogFolderWith(QStringLiteral("settings.json")), kSettingsFilter);
   if (path.isEmpty()) return;
-  rememberDirectory(path);
+  rememberDialogFolder(path);
   saveSettingsFile(path);
 }
 
 void MainWindow::loadSettingsDialog() {
-  const QString path = QFileDialog::getOpenFileName(this, tr("Load settings"), dialogDirectory(), kSettingsFilter);
+  const QString path = QFileDialog::getOpenFileName(this, tr("Load settings"), dialogFolder(), kSettingsFilter);
   if (path.isEmpty()) return;
-  rememberDirectory(path);
+  rememberDialogFolder(path);
   loadSettingsFile(path);
 }
 
@@ -289,10 +290,10 @@ void MainWindow::screenshotDialog() {
     showInfo(tr("Processing frozen while the screenshot is saved"));
   }
   const QString name = QStringLiteral("imagepro-%1.png").arg(QDateTime::currentDateTime().toString(QStringLiteral("yyyyMMdd-hhmmss")));
-  const QString path = QFileDialog::getSaveFileName(this, tr("Save screenshot"), dialogDirectory() + QLatin1Char('/') + name,
+  const QString path = QFileDialog::getSaveFileName(this, tr("Save screenshot"), dialogFolderWith(name),
                                                     tr("PNG images (*.png)"));
   if (!path.isEmpty()) {
-    rememberDirectory(path);
+    rememberDialogFolder(path);
     if (!shot.save(path, "PNG")) showError(tr("Screenshot not saved: %1 cannot be written").arg(path));
     else showInfo(tr("Screenshot saved to %1").arg(path));
   }
@@ -341,11 +342,11 @@ void MainWindow::dataOutDialog(bool on) {
   // Unticked until the worker confirms the file is open.
   control_panel_->outputPanel()->setDataOutPath(data_out_path_);
   const QString chosen = QFileDialog::getSaveFileName(this, tr("Data Out: write the parameters to"),
-                                                      dialogDirectory() + QStringLiteral("/dataout.csv"),
+                                                      dialogFolderWith(QStringLiteral("dataout.csv")),
                                                       tr("CSV files (*.csv *.txt)"), nullptr,
                                                       QFileDialog::DontConfirmOverwrite);
   if (chosen.isEmpty()) return;
-  rememberDirectory(chosen);
+  rememberDialogFolder(chosen);
   const QString path = dataOutFileName(chosen);
   if (path.isEmpty()) {
     startDataOut(chosen, ExistingFile::Fail, false);  // refused, the reason shown

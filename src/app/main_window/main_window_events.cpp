@@ -14,6 +14,7 @@
 #include "app/panels/source_panel.h"
 #include "app/main_window/virtual_keys.h"
 #include "app/worker/worker.h"
+#include "app/main_window/dialog_folder.h"
 
 namespace imagepro::app {
 
@@ -60,7 +61,7 @@ void MainWindow::dropEvent(QDropEvent* event) {
   const QStringList paths = localPaths(event->mimeData());
   if (paths.isEmpty()) return;
   event->acceptProposedAction();
-  rememberDirectory(paths.front());
+  rememberDialogFolder(paths.front());
   openPaths(paths);
 }
 

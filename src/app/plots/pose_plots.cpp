@@ -19,6 +19,7 @@
 #include <map>
 
 #include "app/plots/round_ticks.h"
+#include "app/main_window/dialog_folder.h"
 #include "core/common/atomic_file.h"
 #include "core/pipeline/frame_record.h"
 #include "core/common/pose_csv.h"
@@ -257,9 +258,10 @@ bool PosePlots::exportCsv(const QString& path, QString& error) const {
 }
 
 void PosePlots::exportInteractive() {
-  const QString path = QFileDialog::getSaveFileName(this, tr("Export plotted parameters"), QStringLiteral("poses.csv"),
+  const QString path = QFileDialog::getSaveFileName(this, tr("Export plotted parameters"), dialogFolderWith(QStringLiteral("poses.csv")),
                                                     tr("CSV files (*.csv);;All files (*)"));
   if (path.isEmpty()) return;
+  rememberDialogFolder(path);
   QString why;
   if (exportCsv(path, why)) emit message(tr("Exported %1 frames to %2").arg(recorded_.size()).arg(path));
   else emit error(tr("Export failed: %1").arg(why));

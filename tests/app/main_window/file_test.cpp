@@ -20,7 +20,10 @@
 
 #include <cmath>
 
+#include "app/calibration_wizard/calibration_wizard.h"
 #include "app/panels/control_panel.h"
+#include "app/plots/pose_plots.h"
+#include "app/main_window/dialog_folder.h"
 #include "app/main_window/frame_view.h"
 #include "app/main_window/main_window.h"
 #include "app/main_window/results_text.h"
@@ -254,6 +257,25 @@ void FileTest::dialogsStartWhereTheUserLastWas() {
   w.findChild<QPushButton*>(QStringLiteral("screenshot"))->click();
   QVERIFY(answer.seen);
   QCOMPARE(answer.directory, dir);
+  // The windows beside the main one share the folder: the plots' export, the calibration
+  // wizard's image; a folder chosen there is where the main window's dialogs start next.
+  answerFileDialog(answer);
+  w.posePlots()->findChild<QPushButton*>(QStringLiteral("plotsExport"))->click();
+  QVERIFY(answer.seen);
+  QCOMPARE(answer.directory, dir);
+  CalibrationWizard& wizard = showCalibrationWizard(w);
+  const QString other = numberedFolder(QStringLiteral("dialogs-wizard"), 1);
+  answerFileDialog(answer, other + QStringLiteral("/img1.png"));
+  wizard.findChild<QPushButton*>(QStringLiteral("openImage1"))->click();
+  QVERIFY(answer.seen);
+  QCOMPARE(answer.directory, dir);
+  QCOMPARE(w.dialogDirectory(), other);
+  wizard.close();
+  answerFileDialog(answer);
+  w.findChild<QAction*>(QStringLiteral("dataOutAction"))->trigger();
+  QVERIFY(answer.seen);
+  QCOMPARE(answer.directory, other);
+  rememberDialogFolder(dir);
   // And the next session too.
   window_.reset();
   MainWindow again;
