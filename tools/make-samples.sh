@@ -1,7 +1,8 @@
 #!/bin/sh
 # Regenerates data/samples/: the sample frames of the File source, rendered by
 # imagepro-cli render with the shipped settings (data/settings.json), and their
-# exact poses in data/samples/truth.csv.
+# exact poses in data/samples/truth.csv. They keep the plain backdrop of the thesis's
+# synthetic frames.
 #   usage: tools/make-samples.sh [path/to/imagepro-cli]   (default: build/src/cli/imagepro-cli)
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -11,7 +12,7 @@ mkdir -p "$out"
 rm -f "$out"/sample*.png "$out"/truth.csv
 
 render() {
-  "$cli" render --config "$root/data/settings.json" --out "$out" --frames 1 --append --mode grey "$@"
+  "$cli" render --config "$root/data/settings.json" --out "$out" --frames 1 --append --mode grey --backdrop plain "$@"
 }
 
 # Facing the camera, centred.

@@ -33,6 +33,7 @@ int level(const Args& args, const std::string& key, int fallback) {
 // The settings' virtual scene with the command line's changes.
 void applyOptions(const Args& args, VirtualSceneOptions& s) {
   s.mode = enumOption(args, "mode", s.mode);
+  s.backdrop = enumOption(args, "backdrop", s.backdrop);
   applyVirtualMotionOptions(args, s);
   s.noise_sigma = nonNegative(args, "noise", s.noise_sigma);
   s.blur_sigma_px = nonNegative(args, "blur", s.blur_sigma_px);
@@ -105,7 +106,7 @@ int renderVirtual(const Args& args, Settings settings) {
 }
 
 int run(const Args& args) {
-  std::vector<std::string> known = {"out",   "frames", "mode",  "noise", "blur",    "clutter", "gradient",
+  std::vector<std::string> known = {"out",   "frames", "mode",  "backdrop", "noise", "blur",    "clutter", "gradient",
                                     "white", "black",  "background", "seed", "rate", "pose", "pattern", "name",
                                     "append", "scene"};
   known.insert(known.end(), kVirtualMotionOptions.begin(), kVirtualMotionOptions.end());
@@ -135,6 +136,8 @@ const CommandRegistration kRegistration{{
     "settings' \"virtual\" section, within the ranges the settings file allows:\n"
     "  --mode M          how the frames are drawn:\n" +
     choicesHelp<RenderMode>() +
+    "  --backdrop B      what lies around the target's card (grey mode):\n" +
+    choicesHelp<Backdrop>() +
     virtualMotionHelp() +
     "  --rate HZ         frames per second\n"
     "  --pose RX,RY,RZ,TX,TY,TZ   the initial pose (degrees " + rangeText("virtual.pose.rx_deg") + ", mm, TZ > 0)\n" +
@@ -144,7 +147,7 @@ const CommandRegistration kRegistration{{
     " (grey mode)\n" +
     "  --clutter N       " + rangeText("virtual.clutter") + " white bars and rectangles behind the target's card\n" +
     "  --white L --black L --background L   grey levels " + rangeText("virtual.white_level") + " (grey mode)\n"
-    "  --seed N          clutter and noise seed\n"
+    "  --seed N          backdrop, clutter and noise seed\n"
     "  --pattern         the calibration pattern instead of the target alone\n"
     "  --name NAME       with --frames 1: write NAME.png instead of frame_00000.png\n"
     "  --append          add rows to an existing DIR/truth.csv instead of replacing it\n\n"

@@ -169,6 +169,7 @@ std::vector<ChainFrame> chainFrames(const Settings& settings, int count, std::ui
   auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
   VirtualSceneOptions scene = settings.virtual_scene;
   scene.mode = RenderMode::Grey;
+  scene.backdrop = Backdrop::Plain;
   scene.noise_sigma = kNoiseSigma;
   scene.blur_sigma_px = kBlurSigmaPx;
   std::vector<ChainFrame> frames;
@@ -346,6 +347,7 @@ int run(const Args& args) {
 
   VirtualSceneOptions realistic = settings.virtual_scene;
   realistic.mode = RenderMode::Grey;
+  realistic.backdrop = Backdrop::Plain;
   realistic.noise_sigma = kNoiseSigma;
   realistic.blur_sigma_px = kBlurSigmaPx;
   VirtualSceneOptions clean = realistic;

@@ -71,6 +71,7 @@ class FrameSampler {
     f.scene.blur_sigma_px = uniform(0.0, kMaxBlurSigmaPx);
     f.scene.illumination_gradient = uniform(-kMaxGradient, kMaxGradient);
     f.scene.clutter = kClutter;
+    f.scene.backdrop = Backdrop::Plain;  // the marker's card is painted over this render
     f.scene.seed = static_cast<unsigned>(rng_());
     return f;
   }

@@ -327,7 +327,9 @@ void MainWindow::clearShownResults(const QString& why) {
 }
 
 void MainWindow::restoreDefaults() {
-  setSettings(Settings{});
+  const Settings defaults;
+  if (!mayLoseCalibration(tr("restoring the defaults"), &defaults)) return;
+  setSettings(defaults);
   showInfo(tr("Every option restored to its default"));
 }
 
@@ -387,7 +389,7 @@ void MainWindow::restoreLayout() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-  if (hasUnsavedCalibration() && !mayLoseCalibration()) {
+  if (!mayLoseCalibration(tr("quitting"))) {
     event->ignore();
     return;
   }

@@ -124,8 +124,10 @@ class MainWindow : public QMainWindow {
   void dataOutDialog(bool on);
   void settingsDialog();
   void showKeys();
-  // Asks whether to save an unsaved calibration before quitting: true to quit.
-  bool mayLoseCalibration();
+  // Asks whether to save a calibration in use and not saved before `action` loses it
+  // (quitting, the defaults, a settings file): true to go on. Asks nothing, and is true,
+  // when there is none or `next` keeps the same camera.
+  bool mayLoseCalibration(const QString& action, const Settings* next = nullptr);
 
   Settings settings_;
   SettingsBinder* binder_;

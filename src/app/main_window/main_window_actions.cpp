@@ -167,6 +167,10 @@ bool MainWindow::loadSettingsFile(const QString& path) {
     showError(tr("Settings not loaded from %1: %2").arg(QFileInfo(path).fileName(), QString::fromStdString(error)));
     return false;
   }
+  if (!mayLoseCalibration(tr("loading %1").arg(QFileInfo(path).fileName()), &loaded)) {
+    showInfo(tr("Settings not loaded from %1: the calibration in use is kept").arg(QFileInfo(path).fileName()));
+    return false;
+  }
   setSettings(loaded);
   banner_->hide();  // an earlier load's error is over
   showInfo(tr("Settings loaded from %1").arg(path));
@@ -208,18 +212,20 @@ bool MainWindow::hasUnsavedCalibration() const {
          sameCamera(settings_.camera(unsaved_calibration_->first), unsaved_calibration_->second);
 }
 
-bool MainWindow::mayLoseCalibration() {
+bool MainWindow::mayLoseCalibration(const QString& action, const Settings* next) {
+  if (!hasUnsavedCalibration()) return true;
+  if (next && sameCamera(next->camera(unsaved_calibration_->first), unsaved_calibration_->second)) return true;
   QMessageBox ask(QMessageBox::Warning, tr("Unsaved calibration"),
-                  tr("The %1 source's camera has a calibration set and in use that has not been saved: quitting "
+                  tr("The %1 source's camera has a calibration set and in use that has not been saved: %2 "
                      "loses it. Save the settings first?")
-                      .arg(sourceKindLabel(unsaved_calibration_->first)),
+                      .arg(sourceKindLabel(unsaved_calibration_->first), action),
                   QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, this);
   ask.setObjectName(QStringLiteral("unsavedCalibration"));
   ask.setDefaultButton(QMessageBox::Save);
   switch (ask.exec()) {
     case QMessageBox::Save:
       saveSettingsDialog();
-      return !hasUnsavedCalibration();  // saved: quit; the dialog cancelled or the save failed: stay
+      return !hasUnsavedCalibration();  // saved: go on; the dialog cancelled or the save failed: stay
     case QMessageBox::Discard:
       return true;
     default:

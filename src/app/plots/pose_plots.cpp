@@ -79,9 +79,9 @@ PosePlots::PosePlots(QWidget* parent) : QWidget(parent), pause_(new QPushButton(
       s->attachAxis(p.y);
     }
     // No antialiasing: six charts repainted five times a second must stay cheap for the GUI thread.
-    auto* view = new QChartView(p.chart);
-    view->setMinimumSize(180, 130);
-    grid->addWidget(view, i / 3, i % 3);
+    p.view = new QChartView(p.chart);
+    p.view->setMinimumSize(180, 130);
+    grid->addWidget(p.view, i / 3, i % 3);
   }
   pause_->setObjectName(QStringLiteral("plotsPause"));
   pause_->setCheckable(true);
@@ -107,20 +107,21 @@ PosePlots::PosePlots(QWidget* parent) : QWidget(parent), pause_(new QPushButton(
   });
   connect(clear_button, &QPushButton::clicked, this, &PosePlots::clear);
   connect(export_button, &QPushButton::clicked, this, &PosePlots::exportInteractive);
-  // One plot per tick, a round of six every kRedrawMs: redrawing all six at once held the
-  // GUI thread for about 40 ms, long enough to feel as a stall.
+  // One plot's series per tick, a round of six every kRedrawMs: replacing all six at once
+  // held the GUI thread for about 40 ms, long enough to feel as a stall. The views are
+  // painted together when the round is done, so the six show one window and one last
+  // sample at every moment.
   connect(redraw_timer_, &QTimer::timeout, this, [this] {
-    if (isPaused() || !isVisible()) return;
     if (next_plot_ == 0) {
-      if (!dirty_) return;
+      if (isPaused() || !isVisible() || !dirty_) return;
       dirty_ = false;
       shown_ = whatIsShown();
-      // All six move to the round's window at once; the samples follow one plot per tick,
-      // placed by their own times, so no plot shows another window than the others.
-      for (Plot& p : plots_) setXTicks(p, shown_);
+      holdPainting(true);
     }
+    setXTicks(plots_[static_cast<std::size_t>(next_plot_)], shown_);
     redrawPlot(next_plot_, shown_);
     next_plot_ = (next_plot_ + 1) % static_cast<int>(plots_.size());
+    if (next_plot_ == 0) holdPainting(false);
   });
   redraw_timer_->start(kRedrawMs / static_cast<int>(plots_.size()));  // at most five rounds a second
   redraw();
@@ -186,9 +187,14 @@ PosePlots::Shown PosePlots::whatIsShown() const {
   return shown;
 }
 
+void PosePlots::holdPainting(bool hold) {
+  for (Plot& p : plots_) p.view->setUpdatesEnabled(!hold);
+}
+
 void PosePlots::redraw() {
   dirty_ = false;
   next_plot_ = 0;
+  holdPainting(false);
   shown_ = whatIsShown();
   for (Plot& p : plots_) setXTicks(p, shown_);
   for (int i = 0; i < static_cast<int>(plots_.size()); ++i) redrawPlot(i, shown_);

@@ -13,6 +13,7 @@
 #include "app/worker/display_packet.h"
 
 class QChart;
+class QChartView;
 class QLineSeries;
 class QScatterSeries;
 class QValueAxis;
@@ -60,6 +61,7 @@ class PosePlots : public QWidget {
 
   struct Plot {
     QChart* chart = nullptr;
+    QChartView* view = nullptr;
     QLineSeries* measured = nullptr;
     QScatterSeries* points = nullptr;  // the measured samples as markers
     QLineSeries* truth = nullptr;
@@ -74,6 +76,7 @@ class PosePlots : public QWidget {
   QTimer* redraw_timer_;
   bool dirty_ = false;
   int next_plot_ = 0;  // the timer redraws one plot per tick
+  void holdPainting(bool hold);  // the six views paint together, at the end of a round
 };
 
 }  // namespace imagepro::app

@@ -191,6 +191,7 @@ void SettingsDialog::buildScene() {
   auto& b = *binder_;
   auto v = [](Settings& s) -> VirtualSceneOptions& { return s.virtual_scene; };
   f->addRow(tr("Rendering"), named(b.combo<RenderMode>([v](Settings& s) -> auto& { return v(s).mode; }), "virtualRenderMode"));
+  f->addRow(tr("Backdrop"), named(b.combo<Backdrop>([v](Settings& s) -> auto& { return v(s).backdrop; }), "virtualBackdrop"));
   f->addRow(tr("Supersampling"), named(b.intSpin([v](Settings& s) -> auto& { return v(s).supersampling; }), "virtualSupersampling"));
   f->addRow(tr("Blur sigma"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).blur_sigma_px; }, 2, kPx), "virtualBlur"));
   f->addRow(tr("Noise sigma"), named(b.doubleSpin([v](Settings& s) -> auto& { return v(s).noise_sigma; }, 1), "virtualNoise",

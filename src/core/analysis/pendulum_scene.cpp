@@ -14,6 +14,7 @@ namespace {
 VirtualSceneOptions pendulumScene(const Settings& settings) {
   VirtualSceneOptions scene = settings.virtual_scene;
   scene.motion.kind = MotionKind::Pendulum;
+  scene.backdrop = Backdrop::Plain;  // the thesis's study (5.3.2): its flat background
   return scene;
 }
 }  // namespace

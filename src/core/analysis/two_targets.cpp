@@ -92,6 +92,7 @@ void renderTwoTargets(const CameraModel& camera, const TargetGeometry& target, c
   clean.noise_sigma = 0.0;
   clean.blur_sigma_px = 0.0;
   clean.illumination_gradient = 0.0;
+  clean.backdrop = Backdrop::Plain;  // the thesis's study: the cards on one flat grey
   renderTarget(camera, target, clean, poses[0], ws.left, frame_seed);
   clean.clutter = 0;
   renderTarget(camera, target, clean, poses[1], ws.right, frame_seed);

@@ -100,6 +100,9 @@ constexpr EnumEntry<TD> kTargetDisplay[] = {{TD::None, "none", "None", "the targ
 constexpr EnumEntry<RenderMode> kRender[] = {
     {RenderMode::Binary, "binary", "Binary", "binary frames as in the thesis (2.2)"},
     {RenderMode::Grey, "grey", "Grey", "anti-aliased grey frames with optional blur, noise, gradient and clutter"}};
+constexpr EnumEntry<Backdrop> kBackdrop[] = {
+    {Backdrop::Plain, "plain", "Plain", "one flat grey around the card, as the thesis's synthetic frames"},
+    {Backdrop::Room, "room", "Room", "a lit room: a window, a desk with books, a monitor, a mug"}};
 constexpr EnumEntry<MotionKind> kMotion[] = {
     {MotionKind::Static, "static", "Static", "the target stays put (the keys still move it)"},
     {MotionKind::Sinusoid, "sinusoid", "Sinusoid", "a sinusoid along or about the chosen axis"},
@@ -142,6 +145,7 @@ std::span<const EnumEntry<DisplayOptions::Background>> enumEntries(DisplayOption
 std::span<const EnumEntry<DisplayOptions::Edges>> enumEntries(DisplayOptions::Edges) { return kEdgeDisplay; }
 std::span<const EnumEntry<DisplayOptions::Target>> enumEntries(DisplayOptions::Target) { return kTargetDisplay; }
 std::span<const EnumEntry<RenderMode>> enumEntries(RenderMode) { return kRender; }
+std::span<const EnumEntry<Backdrop>> enumEntries(Backdrop) { return kBackdrop; }
 std::span<const EnumEntry<MotionKind>> enumEntries(MotionKind) { return kMotion; }
 std::span<const EnumEntry<PoseAxis>> enumEntries(PoseAxis) { return kAxis; }
 std::span<const EnumEntry<StreamFormat>> enumEntries(StreamFormat) { return kStreamFormat; }

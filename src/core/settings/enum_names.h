@@ -33,6 +33,7 @@ std::span<const EnumEntry<DisplayOptions::Background>> enumEntries(DisplayOption
 std::span<const EnumEntry<DisplayOptions::Edges>> enumEntries(DisplayOptions::Edges);
 std::span<const EnumEntry<DisplayOptions::Target>> enumEntries(DisplayOptions::Target);
 std::span<const EnumEntry<RenderMode>> enumEntries(RenderMode);
+std::span<const EnumEntry<Backdrop>> enumEntries(Backdrop);
 std::span<const EnumEntry<MotionKind>> enumEntries(MotionKind);
 std::span<const EnumEntry<PoseAxis>> enumEntries(PoseAxis);
 std::span<const EnumEntry<StreamFormat>> enumEntries(StreamFormat);

@@ -261,8 +261,17 @@ struct PendulumOptions {
   double swing_axis_deg = 0.0;
 };
 
+// What the Virtual source's camera sees around the target's card, in grey mode (binary
+// frames, the thesis's, have a black background).
+enum class Backdrop : std::uint8_t {
+  Plain,  // the thesis's synthetic frames: one flat grey, background_level
+  Room,   // a lit room: a wall with a window and a picture, a desk with books, a monitor,
+          // a keyboard, a mug and a cable, darker towards the corners
+};
+
 struct VirtualSceneOptions {
   RenderMode mode = RenderMode::Grey;
+  Backdrop backdrop = Backdrop::Room;
   // Per axis, grey mode edge anti-aliasing: n x n samples per edge pixel. At 4 a pixel's
   // coverage came in steps of 1/16 (1/4 along a row or column), an error in the rim that the
   // accuracy study measured as the method's own; 8 costs three times the sampling and leaves

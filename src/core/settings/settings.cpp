@@ -87,6 +87,7 @@ void visitSettings(Visitor& v, Settings& s) {
   v.object("virtual", [&] {
     VirtualSceneOptions& o = s.virtual_scene;
     v.field("mode", o.mode);
+    v.field("backdrop", o.backdrop);
     v.field("supersampling", o.supersampling, 1, 16);
     v.field("blur_sigma_px", o.blur_sigma_px, 0.0, 50.0);
     v.field("noise_sigma", o.noise_sigma, 0.0, 255.0);

@@ -16,6 +16,7 @@ Settings benchSceneSettings(cv::Size size) {
   s.camera().principal_point_px = {(size.width - 1) / 2.0, (size.height - 1) / 2.0};
   VirtualSceneOptions& v = s.virtual_scene;
   v.mode = RenderMode::Grey;
+  v.backdrop = Backdrop::Plain;  // the figures stay comparable with the thesis's frames
   v.clutter = 8;
   v.initial_pose = Pose{20.0, -25.0, 30.0, 0.0, 0.0, 900.0};
   v.motion.kind = MotionKind::Sinusoid;

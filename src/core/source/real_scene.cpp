@@ -133,6 +133,7 @@ void composeTarget(const cv::Mat& background, const CameraModel& camera, const T
   CV_Assert(background.type() == CV_8UC1 && background.cols == camera.width && background.rows == camera.height);
   VirtualSceneOptions flat;  // the renderer's grey mode with no effects of its own
   flat.mode = RenderMode::Grey;
+  flat.backdrop = Backdrop::Plain;  // the photograph is the backdrop
   flat.white_level = look.white;
   flat.black_level = look.black;
   flat.card_size_mm = look.card_size_mm;

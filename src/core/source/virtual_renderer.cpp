@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/common/lens_model.h"
+#include "core/source/scene_shapes.h"
 
 namespace imagepro {
 namespace {
@@ -77,30 +78,17 @@ struct PlaneScene {
   }
 };
 
-// A white bar or rectangle fixed in the image (distorted pixel coordinates).
-struct ClutterShape {
-  double cu = 0, cv = 0;          // centre
-  double du = 1, dv = 0;          // unit direction of the long side
-  double half_len = 0, half_wid = 0;
-  int u_min = 0, u_max = -1, v_min = 0, v_max = -1;  // pixel bounding box (unclipped)
-
-  bool contains(double u, double v) const {
-    const double pu = u - cu;
-    const double pv = v - cv;
-    return std::abs(pu * du + pv * dv) <= half_len && std::abs(pv * du - pu * dv) <= half_wid;
-  }
-};
-
 // Uniform in [0, 1) from the generator's raw bits (portable across standard libraries,
 // unlike std::uniform_real_distribution).
 double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
-void makeClutter(int count, unsigned seed, int width, int height, std::vector<ClutterShape>& shapes) {
-  shapes.clear();
+// White bars and rectangles (`level`), placed from `seed`, appended to `shapes`.
+void appendClutter(int count, unsigned seed, int width, int height, int level, std::vector<SceneShape>& shapes) {
   std::mt19937_64 rng(0x9e3779b97f4a7c15ULL ^ seed);
   const double size = std::min(width, height);
   for (int k = 0; k < count; ++k) {
-    ClutterShape s;
+    SceneShape s;
+    s.level = level;
     s.cu = uniform01(rng) * width - 0.5;
     s.cv = uniform01(rng) * height - 0.5;
     const double angle = uniform01(rng) * M_PI;
@@ -115,12 +103,7 @@ void makeClutter(int count, unsigned seed, int width, int height, std::vector<Cl
       s.half_len = 0.5 * size * (0.05 + 0.15 * a);
       s.half_wid = 0.5 * size * (0.05 + 0.15 * b);
     }
-    const double eu = std::abs(s.du) * s.half_len + std::abs(s.dv) * s.half_wid;
-    const double ev = std::abs(s.dv) * s.half_len + std::abs(s.du) * s.half_wid;
-    s.u_min = static_cast<int>(std::floor(s.cu - eu)) - 1;
-    s.u_max = static_cast<int>(std::ceil(s.cu + eu)) + 1;
-    s.v_min = static_cast<int>(std::floor(s.cv - ev)) - 1;
-    s.v_max = static_cast<int>(std::ceil(s.cv + ev)) + 1;
+    s.setBox();
     shapes.push_back(s);
   }
 }
@@ -231,28 +214,45 @@ struct CameraCache {
 // Everything reused from frame to frame by one thread.
 struct Workspace {
   CameraCache camera;
-  bool clutter_valid = false;
-  int clutter_count = 0;
-  unsigned clutter_seed = 0;
-  int clutter_width = 0, clutter_height = 0;
-  std::vector<ClutterShape> clutter;
+  // The shapes behind the plane (the room, then the clutter over it) for the key below,
+  // and their anti-aliased image, which stays the same from frame to frame.
+  struct ShapesKey {
+    Backdrop backdrop = Backdrop::Plain;
+    int clutter = 0;
+    unsigned seed = 0;
+    int width = 0, height = 0, white = 0, background = 0;
+    bool operator==(const ShapesKey&) const = default;
+  };
+  bool shapes_valid = false;
+  ShapesKey shapes_key;
+  std::vector<SceneShape> shapes;
+  bool shapes_image_valid = false;
+  int shapes_image_supersampling = 0;
+  cv::Mat shapes_levels;  // CV_8UC1, pixel-centre levels of the shapes alone
+  cv::Mat shapes_grey;    // CV_32FC1, the same anti-aliased
+  cv::Mat room_light;     // CV_32FC1, Backdrop::Room's light (scene_shapes.h)
   cv::Mat levels;  // CV_8UC1, pixel-centre levels (grey mode)
   cv::Mat grey;    // CV_32FC1, anti-aliased image before conversion
   cv::Mat noise;   // CV_32FC1
   cv::Mat neighbour_max, neighbour_min;  // CV_8UC1, 3x3 extremes of `levels`
 
-  const std::vector<ClutterShape>& clutterFor(const VirtualSceneOptions& scene, int width, int height) {
-    const int count = std::max(0, scene.clutter);
-    if (!clutter_valid || count != clutter_count || scene.seed != clutter_seed || width != clutter_width ||
-        height != clutter_height) {
-      makeClutter(count, scene.seed, width, height, clutter);
-      clutter_valid = true;
-      clutter_count = count;
-      clutter_seed = scene.seed;
-      clutter_width = width;
-      clutter_height = height;
+  // The room (grey mode only: the thesis's binary frames have none) and the clutter.
+  const std::vector<SceneShape>& shapesFor(const VirtualSceneOptions& scene, bool binary, int width, int height,
+                                           int white, int background) {
+    const ShapesKey key{binary ? Backdrop::Plain : scene.backdrop, std::max(0, scene.clutter), scene.seed, width,
+                        height, white, background};
+    if (!shapes_valid || !(key == shapes_key)) {
+      shapes.clear();
+      if (key.backdrop == Backdrop::Room) {
+        appendRoomBackdrop(key.seed, width, height, white, shapes);
+        makeRoomLight(width, height, room_light);
+      }
+      appendClutter(key.clutter, key.seed, width, height, white, shapes);
+      shapes_valid = true;
+      shapes_key = key;
+      shapes_image_valid = false;
     }
-    return clutter;
+    return shapes;
   }
 };
 
@@ -261,11 +261,11 @@ Workspace& workspace() {
   return ws;
 }
 
-// The clutter shapes that may cover some area of the image: a short list, or all of
-// them when too many overlap there.
+// The shapes that may cover some area of the image, in drawing order: a short list, or
+// all of them when too many overlap there.
 struct ClutterCandidates {
   static constexpr int kMax = 32;
-  std::array<const ClutterShape*, kMax> shapes;  // the first `count` are set
+  std::array<const SceneShape*, kMax> shapes;  // the first `count` are set
   int count = 0;
   bool all = false;
 };
@@ -274,9 +274,8 @@ struct ClutterCandidates {
 class FrameRenderer {
  public:
   FrameRenderer(const CameraModel& cam, const CameraCache& cache, const PlaneScene& plane, const Pose& pose,
-                const std::vector<ClutterShape>& clutter, int clutter_level, int background)
-      : cam_(cam), cache_(cache), plane_(plane), clutter_(clutter), clutter_level_(clutter_level),
-        background_(background) {
+                const std::vector<SceneShape>& shapes, int background)
+      : cam_(cam), cache_(cache), plane_(plane), clutter_(shapes), background_(background) {
     R_ = rotationMatrix(pose);
     T_ = translation(pose);
     // A camera ray d = (X/Z, Y/Z, 1) meets the plane at lambda * d = x r1 + y r2 + T, so
@@ -311,14 +310,15 @@ class FrameRenderer {
     return clutterOrBackground(u, v, clutter);
   }
 
-  // Level behind the plane scene at (u, v): clutter or background.
+  // Level behind the plane scene at (u, v): the topmost shape there (the last drawn), or
+  // the background.
   int clutterOrBackground(double u, double v, const ClutterCandidates& clutter) const {
     if (clutter.all) {
-      for (const auto& s : clutter_)
-        if (s.contains(u, v)) return clutter_level_;
+      for (auto s = clutter_.rbegin(); s != clutter_.rend(); ++s)
+        if (s->contains(u, v)) return s->level;
     } else {
-      for (int k = 0; k < clutter.count; ++k)
-        if (clutter.shapes[k]->contains(u, v)) return clutter_level_;
+      for (int k = clutter.count - 1; k >= 0; --k)
+        if (clutter.shapes[k]->contains(u, v)) return clutter.shapes[k]->level;
     }
     return background_;
   }
@@ -335,8 +335,9 @@ class FrameRenderer {
     }
   }
 
-  // Fills `out` (CV_8UC1) with pixel-centre levels.
-  void renderCentres(cv::Mat& out) const {
+  // Fills `out` (CV_8UC1) with the pixel-centre levels of the shapes and the background
+  // alone, as if no plane were there.
+  void renderShapeCentres(cv::Mat& out) const {
     out.setTo(cv::Scalar(background_));
     const cv::Rect image(0, 0, out.cols, out.rows);
     for (const auto& s : clutter_) {
@@ -344,9 +345,28 @@ class FrameRenderer {
       for (int v = box.y; v < box.y + box.height; ++v) {
         auto* row = out.ptr<std::uint8_t>(v);
         for (int u = box.x; u < box.x + box.width; ++u)
-          if (s.contains(u, v)) row[u] = static_cast<std::uint8_t>(clutter_level_);
+          if (s.contains(u, v)) row[u] = static_cast<std::uint8_t>(s.level);
       }
     }
+  }
+
+  // Mean level of the shapes and background alone over the pixel's area, n x n samples.
+  float shapesAverage(int u, int v, int n) const {
+    const ClutterCandidates near = candidates(cv::Rect(u, v, 1, 1));
+    int sum = 0;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) sum += clutterOrBackground(u + (i + 0.5) / n - 0.5, v + (j + 0.5) / n - 0.5, near);
+    return static_cast<float>(sum) / static_cast<float>(n * n);
+  }
+
+  // Fills `out` (CV_8UC1) with pixel-centre levels.
+  void renderCentres(cv::Mat& out) const {
+    renderShapeCentres(out);
+    renderPlaneCentres(out);
+  }
+
+  // Overwrites the pixel centres of the rectangle that may see the plane scene.
+  void renderPlaneCentres(cv::Mat& out) const {
     if (roi_.empty()) return;
     const ClutterCandidates near = candidates(roi_);
     // Local copies: byte stores into `out` may alias anything, so members would be
@@ -493,8 +513,7 @@ class FrameRenderer {
   const CameraModel& cam_;
   const CameraCache& cache_;
   PlaneScene plane_;
-  const std::vector<ClutterShape>& clutter_;
-  int clutter_level_;
+  const std::vector<SceneShape>& clutter_;  // the room and clutter, in drawing order
   int background_;
   Eigen::Matrix3d R_;
   Eigen::Vector3d T_;
@@ -530,18 +549,16 @@ void render(const CameraModel& cam, PlaneScene plane, const VirtualSceneOptions&
 
   Workspace& ws = workspace();
   ws.camera.update(cam);
-  const auto& clutter = ws.clutterFor(scene, width, height);
-
   const bool binary = scene.mode == RenderMode::Binary;
   plane.white = binary ? 255 : clampLevel(scene.white_level);
   plane.black = binary ? 0 : clampLevel(scene.black_level);
   const int background = binary ? 0 : clampLevel(scene.background_level);
-  const int clutter_level = plane.white;
+  const auto& shapes = ws.shapesFor(scene, binary, width, height, plane.white, background);
   // When the card looks like the background, only the disk needs the full test.
-  if (!plane.pattern && clutter.empty() && plane.black == background)
+  if (!plane.pattern && shapes.empty() && plane.black == background)
     plane.card_half = std::sqrt(plane.disk_r2);
 
-  const FrameRenderer renderer(cam, ws.camera, plane, pose, clutter, clutter_level, background);
+  const FrameRenderer renderer(cam, ws.camera, plane, pose, shapes, background);
   if (binary) {
     renderer.renderCentres(out);
     return;
@@ -549,28 +566,47 @@ void render(const CameraModel& cam, PlaneScene plane, const VirtualSceneOptions&
 
   // Grey: pixel-centre levels, then anti-aliasing where a pixel differs from a neighbour
   // (a straight edge crossing a pixel always separates two of the 3x3 centres around it).
-  cv::Mat& levels = ws.levels;
-  levels.create(height, width, CV_8UC1);
-  renderer.renderCentres(levels);
-  cv::Mat& grey = ws.grey;
-  levels.convertTo(grey, CV_32F);
-  cv::Rect scan = clutter.empty() ? renderer.roi() : cv::Rect(0, 0, width, height);
-  if (!scan.empty()) scan = cv::Rect(scan.x - 1, scan.y - 1, scan.width + 2, scan.height + 2) & cv::Rect(0, 0, width, height);
+  // The shapes behind the plane do not move: their image is made once, and each frame
+  // draws only the rectangle that may see the plane over it.
   const int n = std::max(1, scene.supersampling);
-  if (!scan.empty()) {
-    // A pixel is on an edge when its 3x3 neighbourhood is not constant: max != min.
-    const cv::Mat area = levels(scan);
-    cv::dilate(area, ws.neighbour_max, cv::Mat());
-    cv::erode(area, ws.neighbour_min, cv::Mat());
+  cv::Mat& levels = ws.levels;
+  cv::Mat& grey = ws.grey;
+  levels.create(height, width, CV_8UC1);
+  const auto antialias = [&](const cv::Rect& area, auto&& average) {
+    if (area.empty()) return;
+    const cv::Rect scan = cv::Rect(area.x - 1, area.y - 1, area.width + 2, area.height + 2) & cv::Rect(0, 0, width, height);
+    const cv::Mat part = levels(scan);
+    cv::dilate(part, ws.neighbour_max, cv::Mat());
+    cv::erode(part, ws.neighbour_min, cv::Mat());
     for (int y = 0; y < scan.height; ++y) {
       const auto* hi = ws.neighbour_max.ptr<std::uint8_t>(y);
       const auto* lo = ws.neighbour_min.ptr<std::uint8_t>(y);
       auto* grey_row = grey.ptr<float>(scan.y + y) + scan.x;
       for (int x = 0; x < scan.width; ++x)
-        if (hi[x] != lo[x]) grey_row[x] = renderer.pixelAverage(scan.x + x, scan.y + y, n);
+        if (hi[x] != lo[x]) grey_row[x] = average(scan.x + x, scan.y + y);
     }
+  };
+  if (shapes.empty()) {
+    renderer.renderCentres(levels);
+    levels.convertTo(grey, CV_32F);
+  } else {
+    if (!ws.shapes_image_valid || ws.shapes_image_supersampling != n) {
+      renderer.renderShapeCentres(levels);
+      levels.convertTo(grey, CV_32F);
+      antialias(cv::Rect(0, 0, width, height), [&](int u, int v) { return renderer.shapesAverage(u, v, n); });
+      levels.copyTo(ws.shapes_levels);
+      grey.copyTo(ws.shapes_grey);
+      ws.shapes_image_valid = true;
+      ws.shapes_image_supersampling = n;
+    }
+    ws.shapes_levels.copyTo(levels);
+    ws.shapes_grey.copyTo(grey);
+    renderer.renderPlaneCentres(levels);
+    if (!renderer.roi().empty()) levels(renderer.roi()).convertTo(grey(renderer.roi()), CV_32F);
   }
+  antialias(renderer.roi(), [&](int u, int v) { return renderer.pixelAverage(u, v, n); });
 
+  if (ws.shapes_key.backdrop == Backdrop::Room) cv::multiply(grey, ws.room_light, grey);
   if (scene.illumination_gradient != 0.0) {
     const double g = scene.illumination_gradient;
     const double span = std::max(width - 1, 1);
@@ -624,7 +660,10 @@ void renderPattern(const CameraModel& camera, const TargetGeometry& target, cons
   p.row_centre = 0.5 * (p.rows - 1.0);
   p.sheet_hx = 0.5 * p.columns * p.spacing;
   p.sheet_hy = 0.5 * p.rows * p.spacing;
-  render(camera, p, scene, pose, out, frame_seed);
+  // A calibration measures the lens: the sheet lies on the plain background, evenly lit.
+  VirtualSceneOptions plain = scene;
+  plain.backdrop = Backdrop::Plain;
+  render(camera, p, plain, pose, out, frame_seed);
 }
 
 bool targetInView(const CameraModel& camera, const TargetGeometry& target, const Pose& pose) {

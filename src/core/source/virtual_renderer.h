@@ -14,7 +14,12 @@
 // that lies on an edge, then applies, in this order: illumination gradient (brightness
 // scaled by 1 + g * (u / (width - 1) - 0.5)), Gaussian blur, Gaussian noise.
 // Clutter (white bars and rectangles fixed in the image, placed from scene.seed) lies
-// behind the card, so it never overlaps it; it is drawn in both modes.
+// behind the card, so it never overlaps it; it is drawn in both modes. In grey mode
+// the Room backdrop (the default; scene_shapes.h) puts a lit room behind the card
+// instead of one flat grey: a wall with a window and a picture, a desk with books, a
+// monitor, a keyboard, a mug and a cable, lit brighter on the window's side and
+// darker towards the corners (the light multiplies the target too, as a room's would).
+// Plain keeps the thesis's flat background_level.
 // A target behind the camera or seen edge-on is simply not in the image; seen from
 // behind, the card (and the pattern's sheet) shows its plain black back. Image points
 // beyond the fold of an extreme distortion model (no undistorted position) see the
@@ -40,7 +45,7 @@ void renderTarget(const CameraModel& camera, const TargetGeometry& target,
 // pattern.card_size_mm at the centre and a grid of black spots centred on the target,
 // without the grid spots that would touch the card. `pose` is the target's pose.
 // Colours and effects as renderTarget (the sheet is white_level, beyond it the
-// background); scene.card_size_mm is not used.
+// background, whatever scene.backdrop says); scene.card_size_mm is not used.
 void renderPattern(const CameraModel& camera, const TargetGeometry& target,
                    const PatternGeometry& pattern, const VirtualSceneOptions& scene,
                    const Pose& pose, cv::Mat& out, std::uint64_t frame_seed = 0);

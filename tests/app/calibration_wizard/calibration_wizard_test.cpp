@@ -250,14 +250,19 @@ void CalibrationWizardTest::quittingAsksBeforeLosingTheCalibration() {
   wizard.close();
 
   // Answers the question with `button`; notes that it was asked.
-  const auto answer = [](QMessageBox::StandardButton button, bool& asked) {
+  // `waiting` counts the answers still looking for their question (one that is never asked
+  // gives up after 3 s): a later question must not be answered by an earlier answer.
+  int waiting = 0;
+  const auto answer = [&waiting](QMessageBox::StandardButton button, bool& asked) {
     asked = false;
-    QTimer::singleShot(0, qApp, [button, &asked] {
+    ++waiting;
+    QTimer::singleShot(0, qApp, [button, &asked, &waiting] {
       QMessageBox* box = nullptr;
       for (int i = 0; i < 300 && !box; ++i) {
         box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
         if (!box) QTest::qWait(10);
       }
+      --waiting;
       if (!box) return;
       asked = box->objectName() == QStringLiteral("unsavedCalibration") &&
               box->text().contains(QStringLiteral("has not been saved"));
@@ -282,12 +287,38 @@ void CalibrationWizardTest::quittingAsksBeforeLosingTheCalibration() {
   QCOMPARE(written.camera(w.settings().source).distortion.k1, wizard.result()->distortion.k1);
   QVERIFY(!w.hasUnsavedCalibration());
 
-  // Set again, then replaced by other settings: nothing left to lose, nothing asked.
+  // Set again: Restore Defaults and Load Settings would replace it, and ask first.
   w.show();
   wizard.findChild<QPushButton*>(QStringLiteral("setAndUse"))->click();
   QVERIFY(w.hasUnsavedCalibration());
+  const double calibrated_k1 = w.settings().camera().distortion.k1;
+  answer(QMessageBox::Cancel, asked);
   w.restoreDefaults();
+  QVERIFY(asked);
+  QVERIFY(w.hasUnsavedCalibration());
+  QCOMPARE(w.settings().camera().distortion.k1, calibrated_k1);
+  const QString defaults_file = scratchDir(QStringLiteral("unsaved-calibration")) + QStringLiteral("/defaults.json");
+  QVERIFY2(ok(saveSettings(defaults_file.toStdString(), Settings{}, error)), error.c_str());
+  answer(QMessageBox::Cancel, asked);
+  QVERIFY(!w.loadSettingsFile(defaults_file));
+  QVERIFY(asked);
+  QCOMPARE(w.settings().camera().distortion.k1, calibrated_k1);
+  // Settings with the same camera replace nothing: nothing asked.
+  const QString same_file = scratchDir(QStringLiteral("unsaved-calibration")) + QStringLiteral("/same-camera.json");
+  Settings same = w.settings();
+  same.stream.port += 1;
+  QVERIFY2(ok(saveSettings(same_file.toStdString(), same, error)), error.c_str());
+  answer(QMessageBox::Cancel, asked);
+  QVERIFY(w.loadSettingsFile(same_file));
+  QTRY_COMPARE_WITH_TIMEOUT(waiting, 0, 5000);
+  QVERIFY(!asked);
+  QVERIFY(w.hasUnsavedCalibration());
+  // Discard: the defaults replace it, nothing is left to lose.
+  answer(QMessageBox::Discard, asked);
+  w.restoreDefaults();
+  QVERIFY(asked);
   QVERIFY(!w.hasUnsavedCalibration());
+  QCOMPARE(w.settings().camera().distortion.k1, Settings{}.camera().distortion.k1);
   // Set again and discarded.
   wizard.findChild<QPushButton*>(QStringLiteral("setAndUse"))->click();
   answer(QMessageBox::Discard, asked);

@@ -9,12 +9,13 @@
 
 #include "core/analysis/error_summary.h"
 #include "core/source/virtual_renderer.h"
+#include "support/plain_scene.h"
 
 namespace imagepro {
 namespace {
 
 Settings studySettings(bool distorted, RenderMode mode = RenderMode::Grey) {
-  Settings s;
+  Settings s = test::plainSettings();
   s.virtual_scene.mode = mode;
   s.virtual_scene.noise_sigma = mode == RenderMode::Grey ? 2.0 : 0.0;
   if (distorted) s.camera().distortion = kThesisCameraDistortion;

@@ -7,6 +7,7 @@
 #include "core/ellipse/detect.h"
 #include "core/source/virtual_renderer.h"
 #include "scenes.h"
+#include "support/plain_scene.h"
 
 namespace imagepro {
 namespace {
@@ -65,7 +66,7 @@ class TargetScene : public ::testing::Test {
 
   CameraModel camera;
   TargetGeometry target;
-  VirtualSceneOptions scene;
+  VirtualSceneOptions scene = test::plainScene();
   EllipseOptions options;
   test::PathPipeline pipe;
   EllipseWorkspace ws;

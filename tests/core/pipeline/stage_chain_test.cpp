@@ -14,15 +14,37 @@
 namespace imagepro {
 namespace {
 
-// A grey virtual frame of the target at `pose`.
+// A grey virtual frame of the target at `pose`, on the thesis's plain background.
 cv::Mat render(const Settings& s, const Pose& pose) {
+  VirtualSceneOptions scene = s.virtual_scene;
+  scene.backdrop = Backdrop::Plain;
   cv::Mat image;
-  renderTarget(s.camera(), s.target, s.virtual_scene, pose, image);
+  renderTarget(s.camera(), s.target, scene, pose, image);
   return image;
 }
 
 double rotationErrorDeg(const Pose& a, const Pose& b) {
   return rotationAngleBetweenDeg(rotationMatrix(a), rotationMatrix(b));
+}
+
+// The default Virtual scene, a lit room around the card: the exact pose holds at every
+// distance and tilt of the Virtual source's range.
+TEST(StageChain, TheDefaultRoomSceneGivesTheExactPose) {
+  const Settings s;
+  ASSERT_EQ(s.virtual_scene.backdrop, Backdrop::Room);
+  StageChain chain;
+  for (const Pose& truth : {Pose{0, 0, 0, 0, 0, 800}, Pose{20, -15, 30, -120, 10, 900}, Pose{-40, 25, 80, 90, -60, 650},
+                            Pose{10, 50, -20, 150, 80, 1200}, Pose{-30, -10, 170, -200, -100, 1000}}) {
+    SCOPED_TRACE(truth.tz_mm);
+    cv::Mat image;
+    renderTarget(s.camera(), s.target, s.virtual_scene, truth, image);
+    FrameResult result;
+    runStageChain(s, image, {}, TargetsToReconstruct::Best, chain, result);
+    ASSERT_EQ(result.status, Status::Ok) << statusName(result.status);
+    ASSERT_TRUE(result.pose.has_value());
+    EXPECT_LT(rotationErrorDeg(truth, *result.pose), 0.5);
+    EXPECT_LT((translation(truth) - translation(*result.pose)).norm(), 0.003 * truth.tz_mm);
+  }
 }
 
 // The target in the shade on the left, a bright window filling the right half: the global

@@ -15,6 +15,7 @@
 #include "core/source/virtual_renderer.h"
 #include "status_print.h"
 #include "test_scenes.h"
+#include "support/plain_scene.h"
 
 namespace imagepro {
 namespace {
@@ -25,7 +26,7 @@ using testing::seenRimEllipse;
 struct FeatureTest : ::testing::Test {
   CameraModel cam;
   TargetGeometry target;
-  VirtualSceneOptions scene;
+  VirtualSceneOptions scene = test::plainScene();
   FeatureWorkspace ws;
   cv::Mat image;
   cv::Rect crop;
@@ -352,7 +353,7 @@ TEST_F(FeatureTest, WeightedSpotCentresBeatThePlainCentroidOnSmallNoisySpots) {
   EXPECT_LT(weightedRms, 0.06);
 
   // Clean and head-on at 2 m: both centres within 0.02 px of the truth.
-  scene = VirtualSceneOptions{};
+  scene = test::plainScene();
   const Pose head = makePose(cam, 2000, 0, 0, 30, 310.4, 245.8);
   const Ellipse e = seenRimEllipse(cam, target, head);
   ASSERT_EQ(prepare(head, e), Status::Ok);

@@ -10,6 +10,7 @@
 #include "core/reconstruction/reconstruct.h"
 #include "core/source/virtual_renderer.h"
 #include "test_scenes.h"
+#include "support/plain_scene.h"
 
 namespace imagepro {
 namespace {
@@ -19,7 +20,7 @@ using testing::rotationErrorDeg;
 using testing::seenRimEllipse;
 
 struct PoseChoiceTest : ::testing::Test {
-  Settings settings;
+  Settings settings = test::plainSettings();
   ReconstructionWorkspace ws;
   ReconstructionResult result;
   cv::Mat image;

@@ -1,4 +1,6 @@
 #include "core/source/virtual_renderer.h"
+#include "core/source/scene_shapes.h"
+#include "support/plain_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -63,7 +65,7 @@ VirtualSceneOptions binaryScene() {
 
 // Grey scene whose levels measure coverage: white 255, everything else 0.
 VirtualSceneOptions coverageScene(int supersampling) {
-  VirtualSceneOptions s;
+  VirtualSceneOptions s = test::plainScene();
   s.mode = RenderMode::Grey;
   s.white_level = 255;
   s.black_level = 0;
@@ -269,7 +271,7 @@ TEST(VirtualRenderer, SmallOffCentreDiskMovesByDeltaOfEquation47) {
 
 TEST(VirtualRenderer, GreyEdgesAreAntiAliasedAndFlatAreasExact) {
   const CameraModel cam;
-  VirtualSceneOptions scene;  // grey, 230 / 20 / 110
+  VirtualSceneOptions scene = test::plainScene();  // grey, 230 / 20 / 110
   cv::Mat img;
   renderTarget(cam, TargetGeometry{}, scene, Pose{20, -10, 5, 0, 0, 800}, img);
   std::vector<int> histogram(256, 0);
@@ -335,7 +337,7 @@ TEST(VirtualRenderer, DefaultAntiAliasingGivesEachRimPixelItsCoverage) {
 
 TEST(VirtualRenderer, IlluminationGradientScalesBrightnessAcrossTheWidth) {
   const CameraModel cam;
-  VirtualSceneOptions scene;
+  VirtualSceneOptions scene = test::plainScene();
   scene.illumination_gradient = 0.4;
   cv::Mat img;
   renderTarget(cam, TargetGeometry{}, scene, Pose{0, 0, 0, 0, 0, 800}, img);
@@ -349,7 +351,7 @@ TEST(VirtualRenderer, IlluminationGradientScalesBrightnessAcrossTheWidth) {
 
 TEST(VirtualRenderer, BlurIsAGaussianOfTheSharpImage) {
   const CameraModel cam;
-  VirtualSceneOptions scene;
+  VirtualSceneOptions scene = test::plainScene();
   const Pose pose{15, 10, 0, 0, 0, 800};
   cv::Mat sharp, blurred;
   renderTarget(cam, TargetGeometry{}, scene, pose, sharp);
@@ -368,7 +370,7 @@ TEST(VirtualRenderer, BlurIsAGaussianOfTheSharpImage) {
 
 TEST(VirtualRenderer, NoiseHasTheGivenSigmaAndIsReproducible) {
   const CameraModel cam;
-  VirtualSceneOptions scene;
+  VirtualSceneOptions scene = test::plainScene();
   const Pose pose{0, 0, 0, 0, 0, 800};
   cv::Mat clean, a, b, c, d;
   renderTarget(cam, TargetGeometry{}, scene, pose, clean);
@@ -391,7 +393,7 @@ TEST(VirtualRenderer, NoiseHasTheGivenSigmaAndIsReproducible) {
 
 TEST(VirtualRenderer, ClutterIsReproducibleAndNeverOverlapsTheCard) {
   const CameraModel cam;
-  VirtualSceneOptions scene;
+  VirtualSceneOptions scene = test::plainScene();
   const Pose pose{25, -15, 10, 40, 30, 600};
   cv::Mat plain, a, b, other;
   renderTarget(cam, TargetGeometry{}, scene, pose, plain);
@@ -415,6 +417,56 @@ TEST(VirtualRenderer, ClutterIsReproducibleAndNeverOverlapsTheCard) {
   EXPECT_GT(cv::countNonZero(clutter), 5000);
 }
 
+// The default backdrop is a lit room: many levels around the card, the card itself as on the
+// plain background times the room's light (scene_shapes.h), the same room for the same seed.
+TEST(VirtualRenderer, RoomBackdropSurroundsTheCardAndLightsItUnevenly) {
+  const CameraModel cam;
+  ASSERT_EQ(VirtualSceneOptions{}.backdrop, Backdrop::Room);
+  VirtualSceneOptions scene;
+  const Pose pose{25, -15, 10, 40, 30, 600};
+  cv::Mat plain, a, b, other;
+  renderTarget(cam, TargetGeometry{}, test::plainScene(), pose, plain);
+  renderTarget(cam, TargetGeometry{}, scene, pose, a);
+  renderTarget(cam, TargetGeometry{}, scene, pose, b);
+  scene.seed = 99;
+  renderTarget(cam, TargetGeometry{}, scene, pose, other);
+  EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(a, other, cv::NORM_L1), 1e5);
+
+  cv::Mat light;
+  makeRoomLight(cam.width, cam.height, light);
+  double lo = 0, hi = 0;
+  cv::minMaxLoc(light, &lo, &hi);
+  EXPECT_LT(lo, 0.8);
+  EXPECT_GT(hi, 1.01);  // brighter than the centre on the window's side
+  // On the card: the plain render's level times the light, to the rounding of each.
+  cv::Mat card = plain != 110;
+  cv::erode(card, card, cv::Mat(), cv::Point(-1, -1), 2);
+  ASSERT_GT(cv::countNonZero(card), 15000);
+  cv::Mat lit, got, diff;
+  plain.convertTo(lit, CV_32F);
+  cv::multiply(lit, light, lit);
+  a.convertTo(got, CV_32F);
+  cv::absdiff(lit, got, diff);
+  double worst = 0;
+  cv::minMaxLoc(diff, nullptr, &worst, nullptr, nullptr, card);
+  EXPECT_LE(worst, 1.0);  // both renders rounded to whole levels
+  // Around it: a room of many levels, not the flat grey.
+  cv::Mat around = plain == 110;
+  cv::erode(around, around, cv::Mat(), cv::Point(-1, -1), 2);
+  int hist[256] = {};
+  int flat = 0, counted = 0;
+  for (int v = 0; v < a.rows; ++v)
+    for (int u = 0; u < a.cols; ++u)
+      if (around.at<std::uint8_t>(v, u)) {
+        ++hist[a.at<std::uint8_t>(v, u)];
+        flat += a.at<std::uint8_t>(v, u) == 110;
+        ++counted;
+      }
+  EXPECT_GT(std::count_if(std::begin(hist), std::end(hist), [&](int n) { return n > counted / 200; }), 12);
+  EXPECT_LT(flat, counted / 10);
+}
+
 TEST(VirtualRenderer, InvisibleTargetsGiveAnEmptyScene) {
   const CameraModel cam;
   const TargetGeometry target;
@@ -431,7 +483,7 @@ TEST(VirtualRenderer, InvisibleTargetsGiveAnEmptyScene) {
   // Nearly edge-on and straddling the camera plane: only part of it is in front.
   renderTarget(cam, target, scene, Pose{0, 89.99, 0, 0, 0, 800}, img);
   renderTarget(cam, target, scene, Pose{80, 0, 0, 0, 0, 20}, img);
-  renderTarget(distortedCamera(), target, VirtualSceneOptions{}, Pose{-85, 30, 0, 10, 0, 5}, img);
+  renderTarget(distortedCamera(), target, test::plainScene(), Pose{-85, 30, 0, 10, 0, 5}, img);
   SUCCEED();
 }
 
