@@ -14,6 +14,7 @@
 #include "app/worker/camera_arguments.h"
 #include "app/main_window/main_window.h"
 #include "app/main_window/responsiveness_probe.h"
+#include "app/plots/pose_plots.h"
 #include "app/worker/source_kind.h"
 #include "core/common/version.h"
 
@@ -168,6 +169,7 @@ int main(int argc, char** argv) {
       return 2;
     }
     QTimer::singleShot(static_cast<int>(seconds * 1000.0), &window, [&window, &app, path = parser.value(screenshot)] {
+      window.posePlots()->redraw();
       if (!window.grab().save(path, "PNG")) {
         std::fprintf(stderr, "imagepro: cannot write %s\n", qPrintable(path));
         app.exit(1);

@@ -41,6 +41,9 @@ class PosePlots : public QWidget {
   const std::vector<PoseSample>& recorded() const { return recorded_; }
   // Writes the recorded samples as pose CSV (+ timestamp and truth columns).
   bool exportCsv(const QString& path, QString& error) const;
+  // Every plot at once, ending a round in progress: a picture of the window taken
+  // during a round would show the held views blank.
+  void redraw();
 
  signals:
   void message(const QString& text);
@@ -55,7 +58,6 @@ class PosePlots : public QWidget {
     double x0 = 0.0, x1 = kWindowS, step = 5.0;
   };
   Shown whatIsShown() const;
-  void redraw();  // every plot at once
   void redrawPlot(int i, const Shown& shown);
   void exportInteractive();
 
