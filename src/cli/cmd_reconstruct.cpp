@@ -116,21 +116,51 @@ int run(const Args& args) {
   return 0;
 }
 
+// `text` in lines of at most `width` characters, each after `indent`.
+std::string wrapped(std::string_view text, std::size_t width, std::string_view indent) {
+  std::string out, line;
+  while (!text.empty()) {
+    const std::size_t space = text.find(' ');
+    const std::string_view word = text.substr(0, space);
+    text = space == std::string_view::npos ? std::string_view{} : text.substr(space + 1);
+    if (!line.empty() && indent.size() + line.size() + 1 + word.size() > width) {
+      out += std::string(indent) + line + "\n";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + std::string(word);
+  }
+  if (!line.empty()) out += std::string(indent) + line + "\n";
+  return out;
+}
+
+// The CSV's columns as the frame record has them, and what its fields beyond the pose say.
+std::string columnsHelp() {
+  std::string text = "\nOne row per frame: " + recordCsvHeader(kReconstructCsv) + ".\n";
+  for (const FrameField& f : frameFields()) {
+    if (!(f.outputs & (kReconstructCsv | kReconstructJson)) || !f.unit.empty() || f.name == "frame" ||
+        f.name == "status")
+      continue;
+    text += wrapped(std::string(f.name) + ((f.outputs & kReconstructCsv) ? "" : " (JSON only)") + ": " +
+                        std::string(f.description),
+                    86, "  ");
+  }
+  return text;
+}
+
 const CommandRegistration kRegistration{{
     "reconstruct",
     "detect the target and reconstruct its pose in every frame (CSV or JSON)",
     std::string("usage: imagepro-cli reconstruct [--config FILE] [--format csv|json] [--truth]\n"
                 "                                [--data-out FILE] [--stream udp://HOST:PORT\n"
                 "                                [--stream-format json|opentrack]] INPUT\n\n") +
-        kFrameInputHelp + "\n  with --virtual, the settings' motion may be changed:\n" + virtualMotionHelp() +
-        "\nOne row per frame: frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm.\n"
+        kFrameInputHelp + "\n  with --virtual, the settings' motion may be changed:\n" + virtualMotionHelp() + columnsHelp() +
         "A frame without a target is a row with the error's name, not a failed command.\n"
         "A pose that cannot be trusted is not ok either: AmbiguousPose (the rim's two\n"
         "possible poses fit the spots about equally; with --format json both are given as\n"
         "\"candidates\", the better-fitting first) or PoseInconsistent (the pose puts the\n"
         "spots or the rim away from where the image has them). When the two lie within\n"
-        "twice ambiguity_min_deg (" +
-        numberText(ReconstructionOptions{}.ambiguity_min_deg) +
+        "twice ambiguity_tolerance_deg (" +
+        numberText(ReconstructionOptions{}.ambiguity_tolerance_deg) +
         " degrees by default) of each other, the frame is ok with the pose\n"
         "halfway between them, and the JSON gives both as \"candidates\" too.\n"
         "  --truth          add the ground-truth pose columns (virtual frames)\n"

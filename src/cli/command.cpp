@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdio>
 
 namespace imagepro::cli {
 
@@ -92,7 +93,9 @@ Settings loadConfig(const Args& args) {
   Settings settings;
   if (const auto path = args.value("config")) {
     std::string error;
-    if (!ok(loadSettings(*path, settings, error))) throw InputError(error);
+    std::vector<std::string> warnings;
+    if (!ok(loadSettings(*path, settings, error, &warnings))) throw InputError(error);
+    for (const std::string& w : warnings) std::fprintf(stderr, "imagepro-cli: warning: %s\n", w.c_str());
   }
   return settings;
 }

@@ -142,13 +142,16 @@ A value the settings file would refuse raises imagepro.InvalidSettings naming th
           [](const std::string& path) {
             Settings s;
             std::string error;
-            const Status status = loadSettings(path, s, error);
+            std::vector<std::string> warnings;
+            const Status status = loadSettings(path, s, error, &warnings);
             if (!ok(status)) throw StatusError(status, error);
+            for (const std::string& w : warnings)
+              if (PyErr_WarnEx(PyExc_DeprecationWarning, w.c_str(), 1) != 0) throw py::error_already_set();
             return s;
           },
           py::arg("path"),
           "Reads a settings file; missing keys keep their defaults. Raises imagepro.FileNotFound "
-          "or imagepro.InvalidSettings.")
+          "or imagepro.InvalidSettings; a key under its old name warns (DeprecationWarning).")
       .def(
           "save",
           [](const Settings& s, const std::string& path) {

@@ -140,6 +140,7 @@ class SettingsFileTest : public QObject {
   void roundTrip();
   void malformedFileNamesTheKey();
   void thresholdNoneIsRefusedByItsKey();
+  void aRenamedKeyLoadsWithAWarning();
   void unreadableFileIsAnError();
   void windowLayoutIsRemembered();
  private:

@@ -102,7 +102,7 @@ def test_threads_share_the_module():
 
 def test_an_ambiguous_pose_gives_both_candidates():
     # Far and nearly face-on, turned 6 deg about y: the rim's two circles fit the spots about
-    # equally, and lie more than twice ambiguity_min_deg (5 deg) apart.
+    # equally, and lie more than twice ambiguity_tolerance_deg (5 deg) apart.
     plain = imagepro.Settings()
     plain["virtual.backdrop"] = "plain"  # the thesis's flat grey: at 6 m the room's window sets the threshold
     r = imagepro.reconstruct(imagepro.render(imagepro.Pose(0, 6, 0, 0, 0, 6000), plain))
@@ -115,7 +115,7 @@ def test_an_ambiguous_pose_gives_both_candidates():
 
 
 def test_close_candidates_give_the_pose_halfway():
-    # Turned 3 deg: the two circles lie within twice ambiguity_min_deg of each other, and the
+    # Turned 3 deg: the two circles lie within twice ambiguity_tolerance_deg of each other, and the
     # pose halfway between them is given, with both as candidates.
     truth = imagepro.Pose(0, 3, 0, 0, 0, 6000)
     r = imagepro.reconstruct(imagepro.render(truth))
@@ -125,7 +125,7 @@ def test_close_candidates_give_the_pose_halfway():
     assert r.pose.rotation_error_deg(first) > 1
     assert r.pose.rotation_error_deg(truth) < 5
     settings = imagepro.Settings()
-    settings["pipeline.reconstruction.ambiguity_min_deg"] = 0.0
+    settings["pipeline.reconstruction.ambiguity_tolerance_deg"] = 0.0
     assert imagepro.reconstruct(imagepro.render(truth), settings).status == "AmbiguousPose"
 
 

@@ -11,6 +11,7 @@
 #include <QPixmap>
 #include <QPushButton>
 #include <QSettings>
+#include <QStringList>
 
 #include "app/analysis/analysis_window.h"
 #include "app/calibration_wizard/calibration_wizard.h"
@@ -163,7 +164,8 @@ void MainWindow::openSamples() {
 bool MainWindow::loadSettingsFile(const QString& path) {
   Settings loaded = settings_;
   std::string error;
-  if (!ok(loadSettings(path.toStdString(), loaded, error))) {
+  std::vector<std::string> warnings;
+  if (!ok(loadSettings(path.toStdString(), loaded, error, &warnings))) {
     showError(tr("Settings not loaded from %1: %2").arg(QFileInfo(path).fileName(), QString::fromStdString(error)));
     return false;
   }
@@ -173,6 +175,9 @@ bool MainWindow::loadSettingsFile(const QString& path) {
   }
   setSettings(loaded);
   banner_->hide();  // an earlier load's error is over
+  QStringList notes;
+  for (const std::string& w : warnings) notes << QString::fromStdString(w);
+  if (!notes.isEmpty()) banner_->showWarning(notes.join(QLatin1Char('\n')));
   showInfo(tr("Settings loaded from %1").arg(path));
   return true;
 }

@@ -8,8 +8,6 @@ namespace imagepro::app {
 
 MessageBanner::MessageBanner(QWidget* parent) : QFrame(parent), label_(new QLabel) {
   setObjectName(QStringLiteral("messageBanner"));
-  setStyleSheet(QStringLiteral("#messageBanner { background: #f8d7da; border: 1px solid #e0a0a8; }"
-                               "#messageBanner QLabel { color: #721c24; }"));
   label_->setWordWrap(true);
   label_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   auto* close = new QToolButton;
@@ -25,6 +23,15 @@ MessageBanner::MessageBanner(QWidget* parent) : QFrame(parent), label_(new QLabe
 }
 
 void MessageBanner::showError(const QString& text) {
+  setStyleSheet(QStringLiteral("#messageBanner { background: #f8d7da; border: 1px solid #e0a0a8; }"
+                               "#messageBanner QLabel { color: #721c24; }"));
+  label_->setText(text);
+  show();
+}
+
+void MessageBanner::showWarning(const QString& text) {
+  setStyleSheet(QStringLiteral("#messageBanner { background: #fff3cd; border: 1px solid #e6c766; }"
+                               "#messageBanner QLabel { color: #664d03; }"));
   label_->setText(text);
   show();
 }

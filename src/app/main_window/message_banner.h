@@ -1,5 +1,5 @@
 #pragma once
-// A dismissable error line at the top of the results area, so a problem (an
+// A dismissable error (red) or warning (amber) line at the top of the results area, so a problem (an
 // unreadable file, malformed settings) is seen where the user is looking.
 #include <QFrame>
 
@@ -13,6 +13,7 @@ class MessageBanner : public QFrame {
  public:
   explicit MessageBanner(QWidget* parent = nullptr);
   void showError(const QString& text);
+  void showWarning(const QString& text);  // done, with something to know (a renamed key)
   QString text() const;
 
  private:

@@ -222,7 +222,7 @@ QWidget* reconstructionPanel(SettingsBinder& binder) {
                                                      "ambiguityRatio", QObject::tr("AmbiguousPose unless one of the rim's two poses fits the spots this many times better")));
   form->addRow(QObject::tr("Ambiguity margin"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).ambiguity_margin_px; }, 2, QStringLiteral(" px")),
                                                       "ambiguityMargin", QObject::tr("AmbiguousPose unless the better of the two poses also fits the spots by this much on a sharp image; the margin grows with the rim's measured blur beyond 1 px")));
-  form->addRow(QObject::tr("Ambiguity tolerance"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).ambiguity_min_deg; }, 1, QStringLiteral(" °")),
+  form->addRow(QObject::tr("Ambiguity tolerance"), named(binder.doubleSpin([r](Settings& s) -> auto& { return r(s).ambiguity_tolerance_deg; }, 1, QStringLiteral(" °")),
                                                          "ambiguityTolerance", QObject::tr("When the spots cannot tell the two poses apart but the pose halfway between them lies within this of both, that pose is given; 0: AmbiguousPose always")));
   binder.onAnyUpdate([&binder, exact] { exact->setEnabled(binder.model().pipeline.reconstruction.distortion_correction); });
   return box;

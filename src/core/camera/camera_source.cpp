@@ -32,6 +32,20 @@ Status setupFailure(int err, Status otherwise) {
 
 std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
 
+// "YUYV 640x480": the format and size S_FMT asks for.
+std::string askedText(const CaptureChoice& choice) {
+  return fourccText(choice.fourcc) + " " + sizeText(choice.width, choice.height);
+}
+
+// The memory-mapped capture buffer `index`, as QUERYBUF and QBUF take it.
+v4l2_buffer mmapBuffer(std::uint32_t index) {
+  v4l2_buffer b{};
+  b.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
+  b.memory = V4L2_MEMORY_MMAP;
+  b.index = index;
+  return b;
+}
+
 std::string rateText(double hz) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.4g Hz", hz);
@@ -100,18 +114,36 @@ bool CameraSource::streaming() const {
 }
 
 Status CameraSource::openAndNegotiate() {
-  const std::string& dev = request_.device;
   failure_ = Status::Ok;
   stopped_ = false;
   error_.clear();
-  std::string err;
+  DeviceInfo info;
+  CaptureChoice choice;
+  Status s = openDevice(info);
+  if (ok(s)) s = chooseFormat(choice);
+  if (ok(s)) s = setFormat(choice, info.card);
+  if (ok(s)) s = setFrameRate(choice);
+  if (ok(s)) s = mapBuffers();
+  if (ok(s)) s = startStreaming(askedText(choice));
+  return s;
+}
 
+Status CameraSource::failSetup(int err, Status otherwise, std::string_view during, std::string_view asked) {
+  const Status why = setupFailure(err, otherwise);
+  std::string message = request_.device + ": " + std::string(statusMessage(why));
+  if (!asked.empty()) message += ": " + std::string(asked);
+  message += " (";
+  if (!during.empty()) message += std::string(during) + ": ";
+  return fail(why, message + v4l2::errnoText(err) + ")");
+}
+
+Status CameraSource::openDevice(DeviceInfo& info) {
+  const std::string& dev = request_.device;
+  std::string err;
   int fd = -1;
   Status s = v4l2::openDevice(io_, dev, fd, err);
   if (!ok(s)) return fail(s, err);
   fd_ = fd;
-
-  DeviceInfo info;
   info.path = dev;
   s = v4l2::readCapabilities(io_, fd_, info, err);
   if (!ok(s)) return fail(s, err);
@@ -120,17 +152,19 @@ Status CameraSource::openAndNegotiate() {
                                             " is not a video capture node (a camera's second node carries metadata)");
   if (!info.streaming)
     return fail(Status::CameraNoSupportedFormat, dev + ": the driver offers no memory-mapped streaming");
+  return Status::Ok;
+}
 
+Status CameraSource::chooseFormat(CaptureChoice& choice) {
+  const std::string& dev = request_.device;
+  std::string err;
   // A capture card's input and standard first: the sizes and rates it offers follow from them.
-  s = selectInputAndStandard(io_, fd_, dev, request_.input, request_.standard, err);
+  Status s = selectInputAndStandard(io_, fd_, dev, request_.input, request_.standard, err);
   if (!ok(s)) return fail(s, err);
-
   std::vector<FormatInfo> formats;
   v4l2::readFormats(io_, fd_, formats);
-  CaptureChoice choice;
   s = chooseCapture(formats, request_.width, request_.height, request_.frame_rate_hz, choice, err);
   if (!ok(s)) return fail(s, dev + ": " + err);
-
   v4l2_format fmt{};
   fmt.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
   if (choice.width <= 0 && v4l2::xioctl(io_, fd_, VIDIOC_G_FMT, &fmt) == 0) {
@@ -142,31 +176,33 @@ Status CameraSource::openAndNegotiate() {
   if (const std::string problem = imageSizeProblem(choice.width, choice.height);
       choice.width > 0 && choice.height > 0 && !problem.empty())
     return fail(Status::ImageTooLarge, dev + ": " + std::string(statusMessage(Status::ImageTooLarge)) + ": " + problem);
-  fmt = v4l2_format{};
+  return Status::Ok;
+}
+
+Status CameraSource::setFormat(const CaptureChoice& choice, const std::string& card) {
+  const std::string& dev = request_.device;
+  v4l2_format fmt{};
   fmt.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
-  fmt.fmt.pix.width = static_cast<std::uint32_t>(std::max(0, choice.width));
-  fmt.fmt.pix.height = static_cast<std::uint32_t>(std::max(0, choice.height));
-  fmt.fmt.pix.pixelformat = choice.fourcc;
-  fmt.fmt.pix.field = V4L2_FIELD_ANY;
-  const std::string asked = fourccText(choice.fourcc) + " " + sizeText(choice.width, choice.height);
-  if (v4l2::xioctl(io_, fd_, VIDIOC_S_FMT, &fmt) < 0) {
-    const int e = errno;
-    const Status why = setupFailure(e, Status::CameraFormatRefused);
-    return fail(why, dev + ": " + std::string(statusMessage(why)) + ": " + asked + " (" + v4l2::errnoText(e) + ")");
-  }
-  const auto got = pixelFormatFromFourcc(fmt.fmt.pix.pixelformat);
+  v4l2_pix_format& pix = fmt.fmt.pix;
+  pix.width = static_cast<std::uint32_t>(std::max(0, choice.width));
+  pix.height = static_cast<std::uint32_t>(std::max(0, choice.height));
+  pix.pixelformat = choice.fourcc;
+  pix.field = V4L2_FIELD_ANY;
+  const std::string asked = askedText(choice);
+  if (v4l2::xioctl(io_, fd_, VIDIOC_S_FMT, &fmt) < 0) return failSetup(errno, Status::CameraFormatRefused, {}, asked);
+  const auto got = pixelFormatFromFourcc(pix.pixelformat);
   if (!got)
     return fail(Status::CameraFormatRefused, dev + ": asked for " + asked + ", the driver answered with " +
-                                                 fourccText(fmt.fmt.pix.pixelformat) + ", which ImagePro cannot read");
+                                                 fourccText(pix.pixelformat) + ", which ImagePro cannot read");
   format_ = CameraFormat{};
   format_.device = dev;
-  format_.card = info.card;
-  format_.fourcc = fmt.fmt.pix.pixelformat;
+  format_.card = card;
+  format_.fourcc = pix.pixelformat;
   format_.format = *got;
-  format_.width = static_cast<int>(fmt.fmt.pix.width);
-  format_.height = static_cast<int>(fmt.fmt.pix.height);
-  format_.buffer_bytes = fmt.fmt.pix.sizeimage;
-  format_.format_adjusted = fmt.fmt.pix.pixelformat != choice.fourcc;
+  format_.width = static_cast<int>(pix.width);
+  format_.height = static_cast<int>(pix.height);
+  format_.buffer_bytes = pix.sizeimage;
+  format_.format_adjusted = pix.pixelformat != choice.fourcc;
   const bool size_asked = request_.width > 0 && request_.height > 0;
   format_.size_adjusted = size_asked && (format_.width != request_.width || format_.height != request_.height);
   if (const std::string problem = imageSizeProblem(format_.width, format_.height);
@@ -174,14 +210,17 @@ Status CameraSource::openAndNegotiate() {
     return fail(Status::ImageTooLarge, dev + ": the driver answered the request for " + asked +
                                            " with a size beyond what a frame may hold: " + problem);
   const std::size_t min_line = minimumBytesPerLine(*got, format_.width);
-  format_.bytes_per_line = fmt.fmt.pix.bytesperline == 0 ? min_line : fmt.fmt.pix.bytesperline;
+  format_.bytes_per_line = pix.bytesperline == 0 ? min_line : pix.bytesperline;
   if (format_.width <= 0 || format_.height <= 0 || format_.bytes_per_line < min_line)
     return fail(Status::CameraFormatRefused, dev + ": the driver answered " + asked + " with an unusable layout (" +
                                                  sizeText(format_.width, format_.height) + ", " +
-                                                 std::to_string(fmt.fmt.pix.bytesperline) + " bytes per line)");
+                                                 std::to_string(pix.bytesperline) + " bytes per line)");
   layout_ = {*got, format_.width, format_.height, format_.bytes_per_line};
+  return Status::Ok;
+}
 
-  // Frame rate: only drivers that announce a settable frame interval are asked.
+Status CameraSource::setFrameRate(const CaptureChoice& choice) {
+  // Only drivers that announce a settable frame interval are asked.
   v4l2_streamparm parm{};
   parm.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
   FrameInterval current;
@@ -194,83 +233,64 @@ Status CameraSource::openAndNegotiate() {
     parm = v4l2_streamparm{};
     parm.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
     parm.parm.capture.timeperframe = {choice.interval.numerator, choice.interval.denominator};
-    if (v4l2::xioctl(io_, fd_, VIDIOC_S_PARM, &parm) == 0) {
+    if (v4l2::xioctl(io_, fd_, VIDIOC_S_PARM, &parm) == 0)
       current = {parm.parm.capture.timeperframe.numerator, parm.parm.capture.timeperframe.denominator};
-    } else if (const int e = errno; e == EBUSY || e == ENODEV) {
-      const Status why = setupFailure(e, Status::CameraBusy);
-      return fail(why, dev + ": " + std::string(statusMessage(why)) + " (setting the frame rate: " +
-                           v4l2::errnoText(e) + ")");
-    }
+    else if (const int e = errno; e == EBUSY || e == ENODEV)  // any other refusal keeps the driver's rate
+      return failSetup(e, Status::CameraBusy, "setting the frame rate");
   }
   format_.nominal_rate_hz = current.rateHz();
   format_.rate_adjusted =
       request_.frame_rate_hz > 0.0 && std::abs(format_.nominal_rate_hz - request_.frame_rate_hz) > 1e-3;
+  return Status::Ok;
+}
 
-  // Memory-mapped buffers.
+Status CameraSource::mapBuffers() {
   v4l2_requestbuffers req{};
   req.count = static_cast<std::uint32_t>(std::clamp(request_.buffers, 2, 32));
   req.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
   req.memory = V4L2_MEMORY_MMAP;
-  if (v4l2::xioctl(io_, fd_, VIDIOC_REQBUFS, &req) < 0) {
-    const int e = errno;
-    const Status why = setupFailure(e, Status::CameraFormatRefused);
-    return fail(why, dev + ": " + std::string(statusMessage(why)) + " (memory-mapped buffers: " +
-                         v4l2::errnoText(e) + ")");
-  }
+  if (v4l2::xioctl(io_, fd_, VIDIOC_REQBUFS, &req) < 0)
+    return failSetup(errno, Status::CameraFormatRefused, "memory-mapped buffers");
   requested_buffers_ = true;
   if (req.count < 2)
-    return fail(Status::CameraFormatRefused,
-                dev + ": the driver granted " + std::to_string(req.count) + " buffer(s), streaming needs 2");
+    return fail(Status::CameraFormatRefused, request_.device + ": the driver granted " + std::to_string(req.count) +
+                                                 " buffer(s), streaming needs 2");
   buffers_.assign(req.count, Buffer{});
   for (std::uint32_t i = 0; i < req.count; ++i) {
-    v4l2_buffer b{};
-    b.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
-    b.memory = V4L2_MEMORY_MMAP;
-    b.index = i;
-    if (v4l2::xioctl(io_, fd_, VIDIOC_QUERYBUF, &b) < 0) {
-      const int e = errno;
-      const Status why = setupFailure(e, Status::CameraFormatRefused);
-      return fail(why, dev + ": " + std::string(statusMessage(why)) + " (buffer " + std::to_string(i) + ": " +
-                           v4l2::errnoText(e) + ")");
-    }
+    v4l2_buffer b = mmapBuffer(i);
+    if (v4l2::xioctl(io_, fd_, VIDIOC_QUERYBUF, &b) < 0) return bufferFailed("buffer ", i);
     void* start = io_.map(fd_, b.length, b.m.offset);
-    if (start == nullptr) {
-      const int e = errno;
-      const Status why = setupFailure(e, Status::CameraFormatRefused);
-      return fail(why, dev + ": " + std::string(statusMessage(why)) + " (mapping buffer " + std::to_string(i) +
-                           ": " + v4l2::errnoText(e) + ")");
-    }
+    if (start == nullptr) return bufferFailed("mapping buffer ", i);
     buffers_[i] = {start, b.length};
   }
-  for (std::uint32_t i = 0; i < req.count; ++i) {
-    v4l2_buffer b{};
-    b.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
-    b.memory = V4L2_MEMORY_MMAP;
-    b.index = i;
-    if (v4l2::xioctl(io_, fd_, VIDIOC_QBUF, &b) < 0) {
-      const int e = errno;
-      const Status why = setupFailure(e, Status::CameraFormatRefused);
-      return fail(why, dev + ": " + std::string(statusMessage(why)) + " (queueing buffer " + std::to_string(i) +
-                           ": " + v4l2::errnoText(e) + ")");
-    }
+  return Status::Ok;
+}
+
+Status CameraSource::startStreaming(const std::string& asked) {
+  for (std::uint32_t i = 0; i < buffers_.size(); ++i) {
+    v4l2_buffer b = mmapBuffer(i);
+    if (v4l2::xioctl(io_, fd_, VIDIOC_QBUF, &b) < 0) return bufferFailed("queueing buffer ", i);
   }
   int type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
   if (v4l2::xioctl(io_, fd_, VIDIOC_STREAMON, &type) < 0) {
     const int e = errno;
     if (e == ENOSPC)
-      return fail(Status::CameraBusy, dev + ": not enough USB bandwidth for " + asked +
+      return fail(Status::CameraBusy, request_.device + ": not enough USB bandwidth for " + asked +
                                           " (another camera on the bus?); choose a smaller size or rate");
-    const Status why = setupFailure(e, Status::CameraFormatRefused);
-    return fail(why, dev + ": " + std::string(statusMessage(why)) + " (starting the stream: " +
-                         v4l2::errnoText(e) + ")");
+    return failSetup(e, Status::CameraFormatRefused, "starting the stream");
   }
   streaming_ = true;
-  format_.buffers = static_cast<int>(req.count);
+  format_.buffers = static_cast<int>(buffers_.size());
   held_ = -1;
   have_sequence_ = false;
   times_count_ = 0;
   times_next_ = 0;
   return Status::Ok;
+}
+
+Status CameraSource::bufferFailed(const char* during, std::uint32_t index) {
+  const int e = errno;  // before building the words, which may allocate
+  return failSetup(e, Status::CameraFormatRefused, during + std::to_string(index));
 }
 
 void CameraSource::closeDevice() {
@@ -305,10 +325,7 @@ Status CameraSource::disconnect(int err, const char* during) {
 }
 
 Status CameraSource::requeue(int index) {
-  v4l2_buffer b{};
-  b.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
-  b.memory = V4L2_MEMORY_MMAP;
-  b.index = static_cast<std::uint32_t>(index);
+  v4l2_buffer b = mmapBuffer(static_cast<std::uint32_t>(index));
   if (v4l2::xioctl(io_, fd_, VIDIOC_QBUF, &b) < 0) return disconnect(errno, "queueing a buffer");
   return Status::Ok;
 }

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/camera/camera_info.h"
@@ -116,6 +117,17 @@ class CameraSource final : public FrameSource {
 
   Status fail(Status s, std::string message);  // under the lock
   Status openAndNegotiate();                   // under the lock
+  // The steps of openAndNegotiate(), in its order; each fail()s with its own words.
+  Status openDevice(DeviceInfo& info);         // open, and check it captures and streams
+  Status chooseFormat(CaptureChoice& choice);  // input and standard, then format, size, rate
+  Status setFormat(const CaptureChoice& choice, const std::string& card);  // S_FMT; the answer checked
+  Status setFrameRate(const CaptureChoice& choice);
+  Status mapBuffers();
+  Status startStreaming(const std::string& asked);  // queue every buffer, STREAMON
+  // A setup call failed with `err`: the device went, is busy or is barred, else `otherwise`.
+  // lastError(): "<device>: <status message>[: <asked>] ([<during>: ]<errno text>)".
+  Status failSetup(int err, Status otherwise, std::string_view during, std::string_view asked = {});
+  Status bufferFailed(const char* during, std::uint32_t index);  // failSetup() for buffer `index`
   void closeDevice();                          // under the lock
   Status disconnect(int err, const char* during);  // takes the lock
   Status requeue(int index);

@@ -29,9 +29,12 @@ constexpr int idx(int i, int j) {
 constexpr double kBinomial[5][5] = {
     {1, 0, 0, 0, 0}, {1, 1, 0, 0, 0}, {1, 2, 1, 0, 0}, {1, 3, 3, 1, 0}, {1, 4, 6, 4, 1}};
 
-inline void accumulate(std::array<double, 15>& s, double x, double y) {
-  const double x2 = x * x, xy = x * y, y2 = y * y;
-  s[0] += 1.0;
+// The fifteen sums x^i y^j (i + j <= 4) of one point, in the order of idx(): in doubles
+// for the floating-point moments, in 64-bit integers for the exact pixel sums.
+template <class T>
+inline void accumulate(std::array<T, 15>& s, T x, T y) {
+  const T x2 = x * x, xy = x * y, y2 = y * y;
+  s[0] += 1;
   s[1] += x;
   s[2] += y;
   s[3] += x2;
@@ -48,36 +51,14 @@ inline void accumulate(std::array<double, 15>& s, double x, double y) {
   s[14] += y2 * y2;
 }
 
-// Sums of x^i y^j in 64-bit integers (x, y the offsets of pixels from the origin).
-struct PixelSums {
-  std::array<std::int64_t, 15> sum{};
-  void add(std::int64_t x, std::int64_t y) {
-    const std::int64_t x2 = x * x, xy = x * y, y2 = y * y;
-    sum[0] += 1;
-    sum[1] += x;
-    sum[2] += y;
-    sum[3] += x2;
-    sum[4] += xy;
-    sum[5] += y2;
-    sum[6] += x2 * x;
-    sum[7] += x2 * y;
-    sum[8] += x * y2;
-    sum[9] += y2 * y;
-    sum[10] += x2 * x2;
-    sum[11] += x2 * xy;
-    sum[12] += x2 * y2;
-    sum[13] += xy * y2;
-    sum[14] += y2 * y2;
-  }
-};
 // (2^12)^4 * 2^12 = 2^60 < 2^63.
 constexpr int kMomentReach = 1 << 12;
 constexpr std::size_t kMomentBlock = std::size_t{1} << 12;
 
 #if defined(__SSE2__)
-// PixelSums of a block in doubles, two sums per instruction: with offsets below
+// The exact integer sums of a block in doubles, two sums per instruction: with offsets below
 // kExactDoubleReach, (2^10)^4 * 2^12 = 2^52, every product and partial sum is an
-// integer below 2^53, so the doubles hold exactly PixelSums' integers.
+// integer below 2^53, so the doubles hold exactly the integer sums.
 constexpr int kExactDoubleReach = 1 << 10;
 
 void exactSums(std::span<const EdgePixel> block, int ox, int oy, std::array<double, 15>& sum) {
@@ -172,7 +153,7 @@ void ConicMoments::add(double x, double y) {
     origin_x = x;
     origin_y = y;
   }
-  accumulate(sum, x - origin_x, y - origin_y);
+  accumulate<double>(sum, x - origin_x, y - origin_y);
   ++count;
 }
 
@@ -196,7 +177,7 @@ void ConicMoments::add(std::span<const EdgePixel> points) {
     const pixel_passes::Bounds b = pixel_passes::bounds(block);
     const int lo = std::min({0, b.min_x - ox, b.min_y - oy}), hi = std::max({0, b.max_x - ox, b.max_y - oy});
     if (lo <= -kMomentReach || hi >= kMomentReach) {
-      for (const EdgePixel& p : block) accumulate(sum, p.x - ox, p.y - oy);
+      for (const EdgePixel& p : block) accumulate<double>(sum, p.x - ox, p.y - oy);
       continue;
     }
     std::array<double, 15> block_sum;
@@ -209,9 +190,10 @@ void ConicMoments::add(std::span<const EdgePixel> points) {
     } else
 #endif
     {
-      PixelSums s;
-      for (const EdgePixel& p : block) s.add(p.x - ox, p.y - oy);
-      for (int k = 0; k < 15; ++k) block_sum[k] = static_cast<double>(s.sum[k]);
+      // Sums of x^i y^j in 64-bit integers (x, y the pixels' offsets from the origin).
+      std::array<std::int64_t, 15> exact{};
+      for (const EdgePixel& p : block) accumulate<std::int64_t>(exact, p.x - ox, p.y - oy);
+      for (int k = 0; k < 15; ++k) block_sum[k] = static_cast<double>(exact[k]);
     }
     for (int k = 0; k < 15; ++k) sum[k] += block_sum[k];
   }
@@ -228,7 +210,7 @@ void ConicMoments::add(std::span<const Eigen::Vector2d> points) {
   // array could alias the points and force a reload of every sum per point.
   const double ox = origin_x, oy = origin_y;
   std::array<double, 15> s = sum;
-  for (const Eigen::Vector2d& p : points) accumulate(s, p.x() - ox, p.y() - oy);
+  for (const Eigen::Vector2d& p : points) accumulate<double>(s, p.x() - ox, p.y() - oy);
   sum = s;
   count += points.size();
 }

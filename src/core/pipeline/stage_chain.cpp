@@ -108,16 +108,24 @@ PassOutcome outcome(const FrameResult& out) {
   return {out.status, out.reached, out.edge_pixels, out.paths, out.detected_region, out.pose};
 }
 
-// Back to the first pass's report; the features shown were the second pass's, so none.
+// What a pass's reconstruction writes into the frame result: cleared at the frame's start
+// and before every pass after the first, so a pass never reports another's features.
+void clearPassFeatures(FrameResult& out) {
+  out.pose.reset();
+  out.ambiguous_poses.reset();
+  out.contour_points.clear();
+  out.rim_seen = 0.0;
+}
+
+// Back to an earlier pass's report; the features shown were the later pass's, so none.
 void restore(const PassOutcome& pass, FrameResult& out) {
+  clearPassFeatures(out);
   out.status = pass.status;
   out.reached = pass.reached;
   out.edge_pixels = pass.edge_pixels;
   out.paths = pass.paths;
   out.detected_region = pass.detected_region;
   out.pose = pass.pose;
-  out.contour_points.clear();
-  out.rim_seen = 0.0;
 }
 
 // The passes swap their buffers with the spare ones, so either set may next hold the
@@ -301,29 +309,28 @@ bool saysMore(ApplicationLevel reached, int factor, ApplicationLevel other, int 
   return factor == 1 && otherFactor > 1;
 }
 
-}  // namespace
+// What one frame's search works on: the frame, the region searched in it, and whether
+// that region is the whole frame (a search to acquire the target) or a tracked one.
+struct Search {
+  const cv::Mat& grey;
+  cv::Rect inside;  // the searched region, clipped to the frame
+  cv::Mat searched;  // a view of it into the frame, never a copy: another view may share it
+  bool whole_frame;
+  TargetsToReconstruct which;
+  const Pose* expected;
+};
 
-bool missedTarget(const FrameResult& out, TargetsToReconstruct which) {
-  if (out.status == Status::AmbiguousTarget || out.status == Status::AmbiguousPose) return false;
-  if (!ok(out.status)) return true;
-  return which == TargetsToReconstruct::Every && out.reached == ApplicationLevel::Reconstruction && !out.pose;
-}
-
-void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect region, TargetsToReconstruct which,
-                   StageChain& chain, FrameResult& out, const Pose* expected) {
-  const PipelineOptions& o = settings.pipeline;
+// The frame result and the chain's buffers as a new frame finds them.
+void startFrame(cv::Size imageSize, StageChain& chain, FrameResult& out) {
   out.status = Status::Ok;
   out.reached = ApplicationLevel::Source;
-  out.image_size = grey.size();
+  out.image_size = imageSize;
   out.threshold = -1;
   out.edge_pixels = 0;
   out.paths = 0;
   out.targets.clear();
-  out.pose.reset();
-  out.ambiguous_poses.reset();
+  clearPassFeatures(out);
   out.detected_region = {};
-  out.contour_points.clear();
-  out.rim_seen = 0.0;
   out.lens_inverse = LensInverse::None;
   for (Stage s : {Stage::Crop, Stage::Threshold, Stage::Edges, Stage::Connectivity, Stage::Ellipse, Stage::Reconstruction})
     out.times[s] = 0.0;
@@ -333,7 +340,154 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
   chain.reported_factor = 1;
   chain.region = {};
   sameCapacities(chain, out);
+}
 
+// The searched region's histogram, and its image reduced by the coarse factor when a
+// reduced pass comes first; returns that factor (1: no reduced pass).
+int measureRegion(const PipelineOptions& o, const Search& search, StageChain& chain, FrameResult& out) {
+  const auto start = Clock::now();
+  if (search.whole_frame) {
+    computeHistogram(search.searched, out.histogram);
+  } else {
+    // A tracked region: its grey-level distribution, all its threshold depends on, is the
+    // same on every k-th row, at least kRegionHistogramPixels pixels in all.
+    estimateHistogramFromRows(search.searched, std::max(1, search.inside.area() / kRegionHistogramPixels),
+                              out.histogram);
+  }
+  // Only a search that ends in a pose can tell a reduced pass's miss from the target's
+  // absence; the stages' own views (detect, edges) keep the frame's size. A tracked
+  // region is small already, and its changing size would change the reduced image's,
+  // whose connectivity index would then be rebuilt on every frame.
+  int k = o.binarization.coarse_search && search.which == TargetsToReconstruct::Best &&
+                  reached(o.level, ApplicationLevel::Reconstruction) && search.whole_frame
+              ? coarseFactor(search.inside.width)
+              : 1;
+  if (k > 1) {
+    reduceByBlockMean(search.searched, k, chain.reduced, chain.reduce_ws);
+    if (chain.reduced.empty()) k = 1;  // a frame too flat to reduce (fewer rows than k)
+  }
+  out.times[Stage::Crop] = microsecondsSince(start);
+  return k;
+}
+
+// The frame's threshold, found in every mode: the histogram's display shows it and a
+// re-threshold of None binarizes the target's crop with it. Returns whether the passes
+// follow: not when a global threshold failed, nor below the Edges level (where only the
+// binary image is shown).
+bool thresholdFrame(const PipelineOptions& o, const Search& search, StageChain& chain, FrameResult& out) {
+  const auto start = Clock::now();
+  out.reached = ApplicationLevel::Threshold;
+  out.status = computeThreshold(o.threshold, out.histogram, out.threshold);
+  const Binarization mode = o.binarization.mode;
+  if (mode != Binarization::Local && !ok(out.status)) {
+    out.times[Stage::Threshold] = microsecondsSince(start);
+    return false;
+  }
+  out.status = Status::Ok;
+  if (!reached(o.level, ApplicationLevel::Edges)) {
+    if (mode == Binarization::Local) binarizeLocal(search.searched, o.binarization, chain.local_ws, chain.binary);
+    else binarize(search.searched, out.threshold, chain.binary);
+  }
+  out.times[Stage::Threshold] = microsecondsSince(start);
+  return reached(o.level, ApplicationLevel::Edges);
+}
+
+// The passes in order: reduced before full size, and with global-then-local the global
+// threshold before the local one at each size (threshold cycling on a miss), then the
+// narrow local window when the settings leave the window to the image.
+struct PassPlan {
+  std::array<Pass, 5> passes{};
+  int count = 0;
+};
+
+PassPlan planPasses(const BinarizationOptions& b, int k, const Search& search) {
+  PassPlan plan;
+  for (const int factor : {k, 1}) {
+    if (b.mode != Binarization::Local) plan.passes[plan.count++] = {false, factor};
+    if (b.mode != Binarization::Global) plan.passes[plan.count++] = {true, factor};
+    if (k == 1) break;
+  }
+  if (b.mode != Binarization::Global && b.window_px == 0 && (!search.whole_frame || search.expected == nullptr))
+    plan.passes[plan.count++] = {true, 1, kNarrowWindowPx};
+  return plan;
+}
+
+// One pass: binarize, find the target, reconstruct it, and on a miss let the ellipse
+// stage's runners-up try.
+void runPass(const Settings& settings, const Search& search, const Pass& pass, StageChain& chain, FrameResult& out) {
+  const PipelineOptions& o = settings.pipeline;
+  const TargetsToReconstruct which = search.which;
+  const cv::Mat& image = pass.factor > 1 ? chain.reduced : search.searched;
+  const cv::Rect passRegion = pass.factor > 1 ? cv::Rect(0, 0, image.cols, image.rows) : search.inside;
+  const auto start = Clock::now();
+  if (pass.local) {
+    BinarizationOptions local = o.binarization;
+    if (pass.window_px > 0) local.window_px = pass.window_px;
+    binarizeLocal(image, local, chain.local_ws, chain.binary);
+  } else {
+    binarize(image, out.threshold, chain.binary);
+  }
+  out.times[Stage::Threshold] += microsecondsSince(start);
+  chain.reported_factor = pass.factor;
+  if (pass.factor > 1) {
+    findTargets(settings, chain.reduced, passRegion, which, chain.reduced_connectivity_ws, chain, out, false);
+    enlargeDetections(pass.factor, search.inside.tl(), chain, out);
+  } else {
+    // The rim from the spots (detect.h) only on the full-size local passes (a global
+    // pass's miss is mostly light that the local pass after it mends, at a fraction of the
+    // cost), and not on a whole frame searched right after a pose: as the narrow pass, it
+    // is for acquiring a target, and a tracked stream's one miss would pay for it
+    // (docs/benchmarks.md).
+    const bool fromSpots = (pass.local || o.binarization.mode == Binarization::Global) &&
+                           (!search.whole_frame || search.expected == nullptr);
+    findTargets(settings, search.grey, passRegion, which, chain.connectivity_ws, chain, out, fromSpots);
+  }
+  if (out.status == Status::AmbiguousTarget && which == TargetsToReconstruct::Best &&
+      reached(o.level, ApplicationLevel::Reconstruction))
+    keepTheOneThatReconstructs(settings, search.grey, chain, out, search.expected);
+  if (ok(out.status)) reconstructTargets(settings, search.grey, which, chain, out, search.expected);
+  if (which == TargetsToReconstruct::Best && out.reached == ApplicationLevel::Reconstruction &&
+      missedTarget(out, which) && !chain.detections.front().spots_found &&
+      tryRunnersUp(settings, search.grey, chain, out, search.expected))
+    reconstructTargets(settings, search.grey, which, chain, out, search.expected);
+}
+
+// Of the passes that missed, the one whose report says most, kept in the spare buffers.
+struct BetterMiss {
+  bool kept = false;
+  PassOutcome outcome;
+
+  // Before the next pass: keeps the pass just run when it says more than the one kept.
+  void offer(StageChain& chain, FrameResult& out) {
+    if (!kept || saysMore(out.reached, chain.reported_factor, outcome.reached, chain.spare.factor)) {
+      outcome = imagepro::outcome(out);
+      swapPasses(chain, out);
+      kept = true;
+    }
+  }
+  // After the last pass missed too: the report of the one that said most.
+  void report(StageChain& chain, FrameResult& out) const {
+    if (kept && !saysMore(out.reached, chain.reported_factor, outcome.reached, chain.spare.factor)) {
+      swapPasses(chain, out);
+      restore(outcome, out);
+    }
+  }
+};
+
+}  // namespace
+
+bool missedTarget(const FrameResult& out, TargetsToReconstruct which) {
+  if (out.status == Status::AmbiguousTarget || out.status == Status::AmbiguousPose) return false;
+  if (!ok(out.status)) return true;
+  return which == TargetsToReconstruct::Every && out.reached == ApplicationLevel::Reconstruction && !out.pose;
+}
+
+// Thesis figure 5.1: the searched region's histogram and threshold, then passes of
+// binarization, edges, connectivity, ellipse and reconstruction until one finds the target.
+void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect region, TargetsToReconstruct which,
+                   StageChain& chain, FrameResult& out, const Pose* expected) {
+  const PipelineOptions& o = settings.pipeline;
+  startFrame(grey.size(), chain, out);
   if (grey.empty() || grey.type() != CV_8UC1) {
     out.status = Status::EmptyFrame;
     out.search_region = {};
@@ -342,120 +496,21 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
   const cv::Rect whole(0, 0, grey.cols, grey.rows);
   out.search_region = region.empty() ? whole : region;
   const cv::Rect inside = out.search_region & whole;
+  const Search search{grey, inside, grey(inside), inside == whole, which, expected};
 
-  auto start = Clock::now();
-  // The searched region is a view into the frame, not a copy: it is counted here and
-  // binarized into the chain's own buffer (never the frame's: another view may share it).
-  const cv::Mat searched = grey(inside);
-  if (inside == whole) {
-    computeHistogram(searched, out.histogram);
-  } else {
-    // A tracked region: its grey-level distribution, all its threshold depends on, is the
-    // same on every k-th row, at least kRegionHistogramPixels pixels in all.
-    estimateHistogramFromRows(searched, std::max(1, inside.area() / kRegionHistogramPixels), out.histogram);
-  }
-  // Only a search that ends in a pose can tell a reduced pass's miss from the target's
-  // absence; the stages' own views (detect, edges) keep the frame's size. A tracked
-  // region is small already, and its changing size would change the reduced image's,
-  // whose connectivity index would then be rebuilt on every frame.
-  int k = o.binarization.coarse_search && which == TargetsToReconstruct::Best &&
-                  reached(o.level, ApplicationLevel::Reconstruction) && inside == whole
-              ? coarseFactor(inside.width)
-              : 1;
-  if (k > 1) {
-    reduceByBlockMean(searched, k, chain.reduced, chain.reduce_ws);
-    if (chain.reduced.empty()) k = 1;  // a frame too flat to reduce (fewer rows than k)
-  }
-  out.times[Stage::Crop] = microsecondsSince(start);
-  if (!reached(o.level, ApplicationLevel::Threshold)) return;
+  const int k = measureRegion(o, search, chain, out);
+  if (!reached(o.level, ApplicationLevel::Threshold) || !thresholdFrame(o, search, chain, out)) return;
 
-  // The frame's threshold is found in every mode: the histogram's display shows it and a
-  // re-threshold of None binarizes the target's crop with it.
-  start = Clock::now();
-  out.reached = ApplicationLevel::Threshold;
-  out.status = computeThreshold(o.threshold, out.histogram, out.threshold);
-  const Binarization mode = o.binarization.mode;
-  if (mode != Binarization::Local && !ok(out.status)) {
-    out.times[Stage::Threshold] = microsecondsSince(start);
-    return;
-  }
-  out.status = Status::Ok;
-  out.times[Stage::Threshold] = microsecondsSince(start);
-  if (!reached(o.level, ApplicationLevel::Edges)) {
-    // The binary image is still shown at this level.
-    if (mode == Binarization::Local) binarizeLocal(searched, o.binarization, chain.local_ws, chain.binary);
-    else binarize(searched, out.threshold, chain.binary);
-    out.times[Stage::Threshold] = microsecondsSince(start);
-    return;
-  }
-
-  // The passes in order: reduced before full size, and with global-then-local the
-  // global threshold before the local one at each size (threshold cycling on a miss).
-  std::array<Pass, 5> passes{};
-  int count = 0;
-  for (const int factor : {k, 1}) {
-    if (mode != Binarization::Local) passes[count++] = {false, factor};
-    if (mode != Binarization::Global) passes[count++] = {true, factor};
-    if (k == 1) break;
-  }
-  if (mode != Binarization::Global && o.binarization.window_px == 0 && (inside != whole || expected == nullptr))
-    passes[count++] = {true, 1, kNarrowWindowPx};
-
-  // The rim from the spots (detect.h) only on the full-size local passes (a global pass's
-  // miss is mostly light that the local pass after it mends, at a fraction of the cost), and
-  // not on a whole frame searched right after a pose: as the narrow pass, it is for acquiring
-  // a target, and a tracked stream's one miss would pay for it (docs/benchmarks.md).
-  const auto fromSpots = [&](const Pass& pass) {
-    return (pass.local || mode == Binarization::Global) && (inside != whole || expected == nullptr);
-  };
-  bool haveMiss = false;  // a missed pass kept in the spare buffers
-  PassOutcome bestMiss;
-  for (int i = 0; i < count; ++i) {
-    const Pass& pass = passes[i];
+  const PassPlan plan = planPasses(o.binarization, k, search);
+  BetterMiss miss;
+  for (int i = 0; i < plan.count; ++i) {
     if (i > 0) {
-      // The last pass missed: keep it when it says more than the one kept.
-      if (!haveMiss || saysMore(out.reached, chain.reported_factor, bestMiss.reached, chain.spare.factor)) {
-        bestMiss = outcome(out);
-        swapPasses(chain, out);
-        haveMiss = true;
-      }
-      out.pose.reset();
-      out.ambiguous_poses.reset();
-      out.contour_points.clear();
-      out.rim_seen = 0.0;
+      miss.offer(chain, out);
+      clearPassFeatures(out);
     }
-    const cv::Mat& image = pass.factor > 1 ? chain.reduced : searched;
-    const cv::Rect passRegion = pass.factor > 1 ? cv::Rect(0, 0, image.cols, image.rows) : inside;
-    start = Clock::now();
-    if (pass.local) {
-      BinarizationOptions local = o.binarization;
-      if (pass.window_px > 0) local.window_px = pass.window_px;
-      binarizeLocal(image, local, chain.local_ws, chain.binary);
-    } else {
-      binarize(image, out.threshold, chain.binary);
-    }
-    out.times[Stage::Threshold] += microsecondsSince(start);
-    chain.reported_factor = pass.factor;
-    if (pass.factor > 1)
-      findTargets(settings, chain.reduced, passRegion, which, chain.reduced_connectivity_ws, chain, out, false);
-    else
-      findTargets(settings, grey, passRegion, which, chain.connectivity_ws, chain, out, fromSpots(pass));
-    if (pass.factor > 1) enlargeDetections(pass.factor, inside.tl(), chain, out);
-    if (out.status == Status::AmbiguousTarget && which == TargetsToReconstruct::Best &&
-        reached(o.level, ApplicationLevel::Reconstruction))
-      keepTheOneThatReconstructs(settings, grey, chain, out, expected);
-    if (ok(out.status)) reconstructTargets(settings, grey, which, chain, out, expected);
-    if (which == TargetsToReconstruct::Best && out.reached == ApplicationLevel::Reconstruction &&
-        missedTarget(out, which) && !chain.detections.front().spots_found &&
-        tryRunnersUp(settings, grey, chain, out, expected))
-      reconstructTargets(settings, grey, which, chain, out, expected);
+    runPass(settings, search, plan.passes[i], chain, out);
     if (!missedTarget(out, which)) break;
-    if (i + 1 == count && haveMiss &&
-        !saysMore(out.reached, chain.reported_factor, bestMiss.reached, chain.spare.factor)) {
-      // Every pass missed: the report of the one that said most.
-      swapPasses(chain, out);
-      restore(bestMiss, out);
-    }
+    if (i + 1 == plan.count) miss.report(chain, out);
   }
   moveReportedEdges(inside, chain);
   chain.region = inside;

@@ -7,46 +7,9 @@
 // One file per step: crop.cpp (targetCrop, rethresholdCrop), contour.cpp (extractContour and
 // its modes), spot_search.cpp (extractSpots).
 //
-// Contour modes (the thesis names them, appendix A, without defining them):
-//  * 8 points ORG: from the detected centre, walk pixel by pixel along the 8 directions
-//    E, SE, S, ... (steps (1,0), (1,1), ...), first across the black centre spot, then
-//    across white; the last white pixel before black (or the crop's edge) is the point,
-//    at its pixel centre. As the earlier method did it: a spot, a noise speck or a dark
-//    blemish on a ray stops the walk early.
-//  * full path ORG: the disk's outer boundary straight from the binary crop: in every row
-//    the first and last white pixel, in every column the first and last white pixel, each
-//    pixel once, at its centre. White clutter or noise inside the crop becomes contour, and
-//    pixel centres lie on average 0.35-0.5 px inside the true rim (a smaller ellipse: the
-//    distance comes out too large).
-//  * 8 points MOD and full path MOD fix both: each point is searched only within a band
-//    of +-w pixels about the detected ellipse, from outside in, and must be followed by a
-//    second white pixel, so clutter, specks and the spots cannot be taken for the rim; and
-//    the point is placed on the pixel boundary between the last black and the first white
-//    pixel, where the threshold crossing lies, not on a pixel centre. 8 points MOD walks
-//    the 8 rays (k * 45 deg in the image) from the detected centre inwards in 1/16 px
-//    steps. Full path MOD scans rows across the parts of the rim that run closer to
-//    vertical and columns across the rest, one point per row or column crossing.
-//  * SubPixel (beyond the thesis, its recommendation 6.3): full path MOD's crossings, placed
-//    in the grey levels, starting from the detected rim (from the binary crossing where that
-//    fails): by the area under the profile over 9 pixels (each pixel's level scaled between
-//    the plateaus beyond them is its white fraction), exact for a straight edge under any
-//    area-preserving blur; where the rim is too curved or too thin for that window, or the
-//    window holds more than one edge, where the profile interpolated linearly crosses the
-//    mean of its two plateaus. Independent of the threshold, of blur and of illumination.
-//    On a large rim only every n-th row and column is taken, for about 160 points (320 on a
-//    rim within about 20 deg of round, where the normal needs them): more add little accuracy.
-//    By default the rim edge model then re-places every point with levels and blur fitted
-//    over the whole rim (rim_edge.h).
-// Spots: the dark 8-connected components (grey at most the middle of the crop's two class
-// means, so that a threshold close to one class cannot swell, shrink or merge them) inside
-// 0.85 of the detected ellipse with an area
-// between 1/5 and 5 times a spot's expected area (pi (r0/R)^2 a b), those reaching the edge
-// of that ellipse only when there are exactly two with them (an occluder across the rim, a
-// clamp or tape, comes in from beyond the disk, while the spots lie within 0.62 of it, a
-// small, steeply seen target's reaching that edge at most); exactly two are
-// expected (SpotsNotFound, AmbiguousSpots otherwise). Each one's position is the centroid
-// weighted by darkness (local white level minus grey) over its box grown by 3 px, the white
-// level taken on that box's border; the one nearer the ellipse's centre is the centre spot.
+// What each contour mode takes as the rim, why the MOD modes and the sub-pixel mode
+// differ from ORG, and how the spots are cut and told from an occluder or glare:
+// docs/reconstruction.md, sections "Contour modes", "Rim edge model" and "Spots".
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 

@@ -81,8 +81,8 @@ constexpr double kSharpSpreadPx = 1.0;
 
 // Of the rim's two circles (out.candidates, centre-nearest first), keeps the one that
 // reprojects the spots better when the spots tell them apart, else the one nearer
-// `expected`, else, when their normals lie within twice ambiguity_min_deg, the pose halfway
-// between them (within ambiguity_min_deg of either), else reports AmbiguousPose. The spots
+// `expected`, else, when their normals lie within twice ambiguity_tolerance_deg, the pose halfway
+// between them (within ambiguity_tolerance_deg of either), else reports AmbiguousPose. The spots
 // are compared by the sum of their squared errors: the offset spot's radial error and the
 // centre spot's both tell the circles apart. The margin the better one must win by grows
 // with the rim's blur. A kept pose (or the better of two ambiguous ones) that does not fit
@@ -119,7 +119,7 @@ Status choosePose(const ReconstructionConfig& config, const Pose* expected, Reco
     if (!spotsDecide && expected) {
       if (rotationBetweenDeg(c.pose[1], *expected) < rotationBetweenDeg(c.pose[0], *expected)) swapCandidates();
       keepFirst();
-    } else if (!spotsDecide && normalsApartDeg(c.pose[0], c.pose[1]) <= 2.0 * o.ambiguity_min_deg) {
+    } else if (!spotsDecide && normalsApartDeg(c.pose[0], c.pose[1]) <= 2.0 * o.ambiguity_tolerance_deg) {
       // Far and near head-on, the circles lie a few degrees either side of the line of
       // sight and their spots a tenth of a pixel apart: halfway is the best that is known.
       out.pose = midPose(c.pose[0], c.pose[1]);

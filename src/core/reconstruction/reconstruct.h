@@ -56,7 +56,7 @@ struct ReconstructionResult {
   // part of it; 0 before the fit. `contour` holds only the points on the rim.
   double rim_seen = 0.0;
   // The spots could not tell the two circles apart and their normals lie within twice
-  // ambiguity_min_deg: `pose` is the one halfway between the candidates.
+  // ambiguity_tolerance_deg: `pose` is the one halfway between the candidates.
   bool halfway_pose = false;
 };
 

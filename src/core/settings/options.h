@@ -166,12 +166,12 @@ struct ReconstructionOptions {
   // The rim's two circles: the one reprojecting the spots better is kept when its error is
   // ambiguity_ratio times smaller and sqrt(error^2 + margin^2) below the other's; else a
   // tracked stream takes the one nearer the last pose, and a still the pose halfway between
-  // them when that lies within ambiguity_min_deg of both (normals up to twice that apart),
+  // them when that lies within ambiguity_tolerance_deg of both (normals up to twice that apart),
   // or is AmbiguousPose. The margin is ambiguity_margin_px on a sharp rim and grows with
   // the rim edge model's blur beyond 1 px of spread.
   double ambiguity_ratio = 1.3;
   double ambiguity_margin_px = 0.07;
-  double ambiguity_min_deg = 5.0;
+  double ambiguity_tolerance_deg = 5.0;
 };
 
 struct TrackingOptions {

@@ -202,7 +202,7 @@ void visitSettings(Visitor& v, Settings& s) {
       v.field("max_rim_error_px", p.reconstruction.max_rim_error_px, 0.0, kInf);
       v.field("ambiguity_ratio", p.reconstruction.ambiguity_ratio, 1.0, kInf);
       v.field("ambiguity_margin_px", p.reconstruction.ambiguity_margin_px, 0.0, kInf);
-      v.field("ambiguity_min_deg", p.reconstruction.ambiguity_min_deg, 0.0, 180.0);
+      v.field("ambiguity_tolerance_deg", p.reconstruction.ambiguity_tolerance_deg, 0.0, 180.0);
     });
     v.object("tracking", [&] {
       TrackingOptions& t = p.tracking;
@@ -627,7 +627,46 @@ class AddressFinder : public KeyPath {
 
 }  // namespace
 
-Status settingsFromJson(std::string_view json_text, Settings& out, std::string& error) {
+namespace {
+
+// Keys renamed since files were written with them: read under the old name too, with a
+// warning; written under the new one.
+struct RenamedKey {
+  std::string_view parent;  // the object holding it, "pipeline.reconstruction"
+  std::string_view old_name, new_name;
+};
+constexpr std::array kRenamedKeys{
+    // A tolerance (the halfway pose lies within it of both circles), not a minimum.
+    RenamedKey{"pipeline.reconstruction", "ambiguity_min_deg", "ambiguity_tolerance_deg"},
+};
+
+// Moves each renamed key of `root` to its new name; both names at once is an error.
+void readRenamedKeys(json& root, std::vector<std::string>& warnings) {
+  for (const RenamedKey& r : kRenamedKeys) {
+    json* parent = &root;
+    std::string_view rest = r.parent;
+    while (parent && !rest.empty()) {
+      const std::size_t dot = rest.find('.');
+      const std::string name(rest.substr(0, dot));
+      rest = dot == std::string_view::npos ? std::string_view{} : rest.substr(dot + 1);
+      const auto it = parent->is_object() ? parent->find(name) : parent->end();
+      parent = it == parent->end() ? nullptr : &*it;
+    }
+    if (!parent || !parent->is_object() || !parent->contains(r.old_name)) continue;
+    const std::string old_path = std::string(r.parent) + "." + std::string(r.old_name);
+    const std::string new_path = std::string(r.parent) + "." + std::string(r.new_name);
+    if (parent->contains(r.new_name))
+      throw SettingsKeyError(old_path + ": the old name of " + new_path + ", which is given too; keep one");
+    (*parent)[std::string(r.new_name)] = std::move((*parent)[std::string(r.old_name)]);
+    parent->erase(std::string(r.old_name));
+    warnings.push_back(old_path + " is now " + new_path + ": read as such (saving writes the new name)");
+  }
+}
+
+}  // namespace
+
+Status settingsFromJson(std::string_view json_text, Settings& out, std::string& error,
+                        std::vector<std::string>* warnings) {
   json root;
   try {
     root = json::parse(json_text);
@@ -640,7 +679,9 @@ Status settingsFromJson(std::string_view json_text, Settings& out, std::string& 
     return Status::InvalidSettings;
   }
   Settings parsed = out;
+  std::vector<std::string> renamed;
   try {
+    readRenamedKeys(root, renamed);
     Reader reader(root);
     // An older file's one camera is every source's; "cameras", read next, may still give
     // a source its own.
@@ -667,6 +708,7 @@ Status settingsFromJson(std::string_view json_text, Settings& out, std::string& 
     return Status::InvalidSettings;
   }
   out = parsed;
+  if (warnings) warnings->insert(warnings->end(), renamed.begin(), renamed.end());
   return Status::Ok;
 }
 
@@ -677,12 +719,16 @@ std::string settingsToJson(const Settings& settings) {
   return writer.root().dump(2) + "\n";
 }
 
-Status loadSettings(const std::string& path, Settings& out, std::string& error) {
+Status loadSettings(const std::string& path, Settings& out, std::string& error,
+                    std::vector<std::string>* warnings) {
   std::string text;
   if (!readWholeFile(path, text, error)) return Status::FileNotFound;
   std::string detail;
-  const Status s = settingsFromJson(text, out, detail);
+  std::vector<std::string> read_warnings;
+  const Status s = settingsFromJson(text, out, detail, &read_warnings);
   if (!ok(s)) error = path + ": " + detail;
+  if (warnings)
+    for (const std::string& w : read_warnings) warnings->push_back(path + ": " + w);
   return s;
 }
 

@@ -38,11 +38,14 @@ struct Settings {
 };
 
 // Parses JSON text over the defaults. On failure returns InvalidSettings, leaves
-// `out` unchanged and sets `error` to "<key.path>: <problem>".
-Status settingsFromJson(std::string_view json_text, Settings& out, std::string& error);
+// `out` unchanged and sets `error` to "<key.path>: <problem>". A key read under the old
+// name of a renamed key (settings.cpp, kRenamedKeys) adds a line to `warnings`.
+Status settingsFromJson(std::string_view json_text, Settings& out, std::string& error,
+                        std::vector<std::string>* warnings = nullptr);
 std::string settingsToJson(const Settings& settings);
 
-Status loadSettings(const std::string& path, Settings& out, std::string& error);
+Status loadSettings(const std::string& path, Settings& out, std::string& error,
+                    std::vector<std::string>* warnings = nullptr);
 Status saveSettings(const std::string& path, const Settings& settings, std::string& error);
 
 // One key of the settings file as the settings table (settings.cpp) has it: the one

@@ -3,6 +3,7 @@
 #include <QComboBox>
 #include <QDockWidget>
 #include <QFile>
+#include <QDoubleSpinBox>
 #include <QSpinBox>
 #include <QTest>
 
@@ -109,6 +110,20 @@ void SettingsFileTest::thresholdNoneIsRefusedByItsKey() {
   QCOMPARE(w.findChild<QComboBox*>(QStringLiteral("rethresholdMethod"))->currentData().toInt(),
            static_cast<int>(ThresholdMethod::None));
   QVERIFY(w.bannerText().isEmpty());
+}
+
+// A file with a key's old name loads, the panel shows the value, and the banner names both
+// names.
+void SettingsFileTest::aRenamedKeyLoadsWithAWarning() {
+  MainWindow& w = *window_;
+  const QString dir = scratchDir(QStringLiteral("renamed"));
+  writeText(dir + QStringLiteral("/old.json"), R"({"pipeline": {"reconstruction": {"ambiguity_min_deg": 2.5}}})");
+  QVERIFY(w.loadSettingsFile(dir + QStringLiteral("/old.json")));
+  QCOMPARE(w.settings().pipeline.reconstruction.ambiguity_tolerance_deg, 2.5);
+  QCOMPARE(w.findChild<QDoubleSpinBox*>(QStringLiteral("ambiguityTolerance"))->value(), 2.5);
+  QVERIFY2(w.bannerText().contains(QStringLiteral("ambiguity_min_deg")) &&
+               w.bannerText().contains(QStringLiteral("ambiguity_tolerance_deg")),
+           qPrintable(w.bannerText()));
 }
 
 void SettingsFileTest::unreadableFileIsAnError() {

@@ -219,7 +219,7 @@ void PanelTest::reconstructionPanel() {
   QVERIFY(waitForApplied(w, [before](const Settings& s) {
     const ReconstructionOptions& r = s.pipeline.reconstruction;
     return r.distortion_correction == !before && r.contour_mode == ContourMode::SubPixel && r.crop_margin_px == 9 &&
-           std::abs(r.ambiguity_margin_px - 0.12) < 1e-9 && std::abs(r.ambiguity_min_deg - 2.5) < 1e-9;
+           std::abs(r.ambiguity_margin_px - 0.12) < 1e-9 && std::abs(r.ambiguity_tolerance_deg - 2.5) < 1e-9;
   }));
   for (ContourMode m : {ContourMode::EightPointsOrg, ContourMode::EightPointsMod, ContourMode::FullPathOrg}) {
     QVERIFY(choose(find<QComboBox>(w, "contourMode"), m));

@@ -1,32 +1,13 @@
 // Steady state of the real-time stages: once the output containers and workspaces
 // have grown to a frame's size, Laplace edges and both connectivity methods allocate
-// nothing more. Counts every global operator new in this test program.
+// nothing more. Counts every global operator new in this test program
+// (support/allocation_counter.cpp).
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
 #include "core/connectivity/connectivity.h"
 #include "core/edges/edges.h"
-
-namespace {
-std::atomic<long> gAllocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  gAllocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-// GCC at -O1 (the sanitizer builds) takes the free() below for a mismatch with the
-// replaced operator new, which is malloc() underneath.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
+#include "support/allocation_counter.h"
 
 namespace imagepro {
 namespace {
@@ -56,11 +37,11 @@ TEST(SteadyState, EdgesAndConnectivityDoNotAllocate) {
   }
   for (int i = 0; i < 4; ++i) {
     const cv::Mat& frame = i % 2 ? second : first;
-    const long before = gAllocations.load();
+    const long before = test::allocationCount();
     const Status e = detectEdgesLaplace(frame, edges);
     const Status c1 = connectCN1(edges, size, paths, ws);
     const Status c0 = connectCN0(edges, size, paths, ws);
-    const long allocations = gAllocations.load() - before;
+    const long allocations = test::allocationCount() - before;
     ASSERT_EQ(e, Status::Ok);
     ASSERT_EQ(c1, Status::Ok);
     ASSERT_EQ(c0, Status::Ok);

@@ -2,40 +2,15 @@
 // allocates nothing (real-time rule: no per-frame heap allocation in steady state).
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <functional>
-#include <new>
-
 #include "core/ellipse/detect.h"
 #include "core/source/virtual_renderer.h"
 #include "scenes.h"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-// GCC at -O1 (the sanitizer builds) takes the free() below for a mismatch with the
-// replaced operator new, which is malloc() underneath.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
+#include "support/allocation_counter.h"
 
 namespace imagepro {
 namespace {
 
-long allocationsOf(const std::function<void()>& work) {
-  const long before = g_allocations.load();
-  work();
-  return g_allocations.load() - before;
-}
+using test::allocationsOf;
 
 TEST(EllipseAllocation, CounterCounts) {
   EXPECT_EQ(allocationsOf([] { ::operator delete(::operator new(16)); }), 1);

@@ -134,8 +134,8 @@ TEST_F(PoseChoiceTest, NearlyEqualCandidatesAreNotAmbiguous) {
 
 // Far targets seen 2.5-4.5 deg off their line of sight: the rim's two circles lie 5-9 deg
 // apart, either side of it. When the spots cannot tell them apart (here: never), the pose
-// halfway between them is ok, within ambiguity_min_deg of either, and here of the truth; with
-// ambiguity_min_deg 0 the same frames are AmbiguousPose.
+// halfway between them is ok, within ambiguity_tolerance_deg of either, and here of the truth; with
+// ambiguity_tolerance_deg 0 the same frames are AmbiguousPose.
 TEST_F(PoseChoiceTest, CloseCandidatesTheSpotsCannotTellApartGiveThePoseHalfway) {
   ReconstructionOptions& o = settings.pipeline.reconstruction;
   o.ambiguity_ratio = 1e6;
@@ -145,7 +145,7 @@ TEST_F(PoseChoiceTest, CloseCandidatesTheSpotsCannotTellApartGiveThePoseHalfway)
   std::uint64_t seed = 300;
   for (int i = 0; i < 12; ++i) {
     const Pose truth = makePose(settings.camera(), z(rng), tilt(rng), rz(rng), rz(rng), 320, 240);
-    o.ambiguity_min_deg = 5.0;
+    o.ambiguity_tolerance_deg = 5.0;
     ASSERT_EQ(run(truth, ++seed), Status::Ok) << "frame " << i;
     const PoseCandidates& c = result.candidates;
     ASSERT_TRUE(ok(c.status[1]));
@@ -155,9 +155,9 @@ TEST_F(PoseChoiceTest, CloseCandidatesTheSpotsCannotTellApartGiveThePoseHalfway)
     EXPECT_TRUE(result.halfway_pose);
     EXPECT_NEAR(rotationErrorDeg(result.pose, c.pose[0]), apart / 2, 1e-6);
     EXPECT_NEAR(rotationErrorDeg(result.pose, c.pose[1]), apart / 2, 1e-6);
-    EXPECT_LT(rotationErrorDeg(truth, result.pose), o.ambiguity_min_deg);
+    EXPECT_LT(rotationErrorDeg(truth, result.pose), o.ambiguity_tolerance_deg);
     EXPECT_LT(result.spot_error_px, o.max_spot_error_px);
-    o.ambiguity_min_deg = 0.0;
+    o.ambiguity_tolerance_deg = 0.0;
     EXPECT_EQ(run(truth, seed), Status::AmbiguousPose) << "frame " << i;
     EXPECT_FALSE(result.halfway_pose);
   }

@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <typeindex>
+#include <vector>
 
 #include "core/common/atomic_file.h"
 #include "core/settings/enum_names.h"
@@ -280,6 +281,40 @@ TEST(Settings, ArchitectureExampleLoads) {
   std::string err;
   ASSERT_EQ(settingsFromJson(text, s, err), Status::Ok) << err;
   EXPECT_EQ(s.pattern.columns, 61);
+}
+
+// A renamed key is read under its old name with a warning naming both, written under the
+// new one; both names at once are refused, and the file's other keys still load.
+TEST(Settings, ARenamedKeyIsReadUnderItsOldNameWithAWarning) {
+  Settings s;
+  std::string err;
+  std::vector<std::string> warnings;
+  ASSERT_EQ(settingsFromJson(R"({"pipeline": {"reconstruction": {"ambiguity_min_deg": 2.5, "ambiguity_ratio": 1.7}}})",
+                             s, err, &warnings),
+            Status::Ok)
+      << err;
+  EXPECT_DOUBLE_EQ(s.pipeline.reconstruction.ambiguity_tolerance_deg, 2.5);
+  EXPECT_DOUBLE_EQ(s.pipeline.reconstruction.ambiguity_ratio, 1.7);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("pipeline.reconstruction.ambiguity_min_deg"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("pipeline.reconstruction.ambiguity_tolerance_deg"), std::string::npos) << warnings[0];
+  const std::string saved = settingsToJson(s);
+  EXPECT_EQ(saved.find("ambiguity_min_deg"), std::string::npos);
+  EXPECT_NE(saved.find("\"ambiguity_tolerance_deg\": 2.5"), std::string::npos);
+
+  // Its range is the new key's.
+  EXPECT_NE(loadError(R"({"pipeline": {"reconstruction": {"ambiguity_min_deg": 500}}})")
+                .find("pipeline.reconstruction.ambiguity_tolerance_deg"),
+            std::string::npos);
+  const std::string both =
+      loadError(R"({"pipeline": {"reconstruction": {"ambiguity_min_deg": 1, "ambiguity_tolerance_deg": 2}}})");
+  EXPECT_NE(both.find("ambiguity_min_deg"), std::string::npos) << both;
+  EXPECT_NE(both.find("ambiguity_tolerance_deg"), std::string::npos) << both;
+
+  // Without the old name, no warning.
+  warnings.clear();
+  ASSERT_EQ(settingsFromJson(saved, s, err, &warnings), Status::Ok) << err;
+  EXPECT_TRUE(warnings.empty());
 }
 
 TEST(Settings, MissingKeysKeepDefaults) {

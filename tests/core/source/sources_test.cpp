@@ -11,20 +11,16 @@
 #include <thread>
 
 #include "core/source/virtual_renderer.h"
+#include "support/expect_pose.h"
 
 namespace imagepro {
 namespace {
 
 namespace fs = std::filesystem;
 
-void expectPose(const Pose& got, const Pose& want, double tol = 1e-12) {
-  EXPECT_NEAR(got.rx_deg, want.rx_deg, tol);
-  EXPECT_NEAR(got.ry_deg, want.ry_deg, tol);
-  EXPECT_NEAR(got.rz_deg, want.rz_deg, tol);
-  EXPECT_NEAR(got.tx_mm, want.tx_mm, tol);
-  EXPECT_NEAR(got.ty_mm, want.ty_mm, tol);
-  EXPECT_NEAR(got.tz_mm, want.tz_mm, tol);
-}
+using test::expectPose;
+// The truth a source reports is the very pose computed: only rounding apart.
+constexpr double kSamePose = 1e-12;
 
 TEST(FileSource, DeliversEveryFileAndGoesOnAfterErrors) {
   const fs::path dir = fs::path(IMAGEPRO_TEST_TMP) / "source" / "file_source";
@@ -88,7 +84,7 @@ TEST(VirtualSource, FramesCarryIndexTimeAndExactPose) {
     EXPECT_EQ(f.index, i);
     EXPECT_DOUBLE_EQ(f.timestamp_s, i / 20.0);
     ASSERT_TRUE(f.truth.has_value());
-    expectPose(*f.truth, virtualPoseAt(settings.virtual_scene, i / 20.0));
+    expectPose(*f.truth, virtualPoseAt(settings.virtual_scene, i / 20.0), kSamePose);
     cv::Mat expected;
     renderTarget(settings.camera(), settings.target, settings.virtual_scene, *f.truth, expected, i);
     EXPECT_EQ(cv::norm(f.image, expected, cv::NORM_INF), 0.0);
@@ -103,7 +99,7 @@ TEST(VirtualSource, KeysSettingsAndRestartApplyFromTheNextFrame) {
   auto source = makeVirtualSource(settings);
   Frame f;
   ASSERT_EQ(source->next(f), Status::Ok);
-  expectPose(*f.truth, settings.virtual_scene.initial_pose);
+  expectPose(*f.truth, settings.virtual_scene.initial_pose, kSamePose);
   source->pressKey(VirtualKey::TxPlus);
   source->pressKey(VirtualKey::TxPlus);
   source->pressKey(VirtualKey::RzMinus);
@@ -111,8 +107,9 @@ TEST(VirtualSource, KeysSettingsAndRestartApplyFromTheNextFrame) {
   Pose want = settings.virtual_scene.initial_pose;
   want.tx_mm += 2 * settings.virtual_scene.key_step_mm;
   want.rz_deg -= settings.virtual_scene.key_step_deg;
-  expectPose(*f.truth, want);
-  expectPose(source->keyOffset(), Pose{0, 0, -settings.virtual_scene.key_step_deg, 2 * settings.virtual_scene.key_step_mm, 0, 0});
+  expectPose(*f.truth, want, kSamePose);
+  expectPose(source->keyOffset(),
+             Pose{0, 0, -settings.virtual_scene.key_step_deg, 2 * settings.virtual_scene.key_step_mm, 0, 0}, kSamePose);
 
   settings.virtual_scene.initial_pose.tz_mm = 1200;
   source->setSettings(settings);
@@ -126,7 +123,7 @@ TEST(VirtualSource, KeysSettingsAndRestartApplyFromTheNextFrame) {
   EXPECT_EQ(source->nextIndex(), 0);
   ASSERT_EQ(source->next(f), Status::Ok);
   EXPECT_EQ(f.index, 0);
-  expectPose(*f.truth, settings.virtual_scene.initial_pose);
+  expectPose(*f.truth, settings.virtual_scene.initial_pose, kSamePose);
 
   source->setContent(VirtualContent::Pattern);
   ASSERT_EQ(source->next(f), Status::Ok);

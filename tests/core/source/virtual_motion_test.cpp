@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "support/expect_pose.h"
+
 namespace imagepro {
 namespace {
 
@@ -17,14 +19,7 @@ VirtualSceneOptions motionScene(MotionKind kind, PoseAxis axis, double amplitude
   return s;
 }
 
-void expectPose(const Pose& got, const Pose& want, double tol = 1e-9) {
-  EXPECT_NEAR(got.rx_deg, want.rx_deg, tol);
-  EXPECT_NEAR(got.ry_deg, want.ry_deg, tol);
-  EXPECT_NEAR(got.rz_deg, want.rz_deg, tol);
-  EXPECT_NEAR(got.tx_mm, want.tx_mm, tol);
-  EXPECT_NEAR(got.ty_mm, want.ty_mm, tol);
-  EXPECT_NEAR(got.tz_mm, want.tz_mm, tol);
-}
+using test::expectPose;
 
 TEST(VirtualMotion, StaticStaysAtTheInitialPose) {
   const auto s = motionScene(MotionKind::Static, PoseAxis::Tx, 100, 4);
