@@ -25,7 +25,13 @@ struct Settings {
   SourceKind source = SourceKind::Virtual;
   TargetGeometry target;
   PatternGeometry pattern;
-  VirtualSceneOptions virtual_scene;
+  // The Virtual source: by default the card in a lit room (docs/user-manual.md 3.3), so
+  // the first frames look like a camera's.
+  VirtualSceneOptions virtual_scene = [] {
+    VirtualSceneOptions scene;
+    scene.backdrop = Backdrop::Room;
+    return scene;
+  }();
   CameraSourceOptions camera_source;
   StreamOptions stream;
   PipelineOptions pipeline;

@@ -15,8 +15,8 @@
 // scaled by 1 + g * (u / (width - 1) - 0.5)), Gaussian blur, Gaussian noise.
 // Clutter (white bars and rectangles fixed in the image, placed from scene.seed) lies
 // behind the card, so it never overlaps it; it is drawn in both modes. In grey mode
-// the Room backdrop (the default; scene_shapes.h) puts a lit room behind the card
-// instead of one flat grey: a wall with a window and a picture, a desk with books, a
+// the Room backdrop (the settings' default for the Virtual source; scene_shapes.h) puts
+// a lit room behind the card instead of one flat grey: a wall with a window and a picture, a desk with books, a
 // monitor, a keyboard, a mug and a cable, lit brighter on the window's side and
 // darker towards the corners (the light multiplies the target too, as a room's would).
 // Plain keeps the thesis's flat background_level.

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/settings/settings.h"
+
 #include <Eigen/Dense>
 #include <opencv2/imgproc.hpp>
 
@@ -417,12 +419,14 @@ TEST(VirtualRenderer, ClutterIsReproducibleAndNeverOverlapsTheCard) {
   EXPECT_GT(cv::countNonZero(clutter), 5000);
 }
 
-// The default backdrop is a lit room: many levels around the card, the card itself as on the
-// plain background times the room's light (scene_shapes.h), the same room for the same seed.
+// The Virtual source's default backdrop is a lit room (a scene made directly is plain): many
+// levels around the card, the card itself as on the plain background times the room's light
+// (scene_shapes.h), the same room for the same seed.
 TEST(VirtualRenderer, RoomBackdropSurroundsTheCardAndLightsItUnevenly) {
   const CameraModel cam;
-  ASSERT_EQ(VirtualSceneOptions{}.backdrop, Backdrop::Room);
-  VirtualSceneOptions scene;
+  ASSERT_EQ(Settings{}.virtual_scene.backdrop, Backdrop::Room);
+  ASSERT_EQ(VirtualSceneOptions{}.backdrop, Backdrop::Plain);
+  VirtualSceneOptions scene = Settings{}.virtual_scene;
   const Pose pose{25, -15, 10, 40, 30, 600};
   cv::Mat plain, a, b, other;
   renderTarget(cam, TargetGeometry{}, test::plainScene(), pose, plain);
