@@ -169,7 +169,7 @@ void MainWindow::buildDocks() {
     settings_.source = kind;
     binder_->refresh();
     worker_->setSettings(settings_);
-    banner_->hide();  // an earlier source's problem is not this one's
+    banner_->clearError();  // an earlier source's problem is not this one's
     if (!opening_paths_) worker_->selectSource(kind);
   });
   OutputPanel* output = control_panel_->outputPanel();
@@ -214,7 +214,7 @@ void MainWindow::connectWorker() {
     if (!running) status_rate_->setText(tr("stopped"));
   });
   connect(worker_, &Worker::runningChanged, this, [this](bool running) {
-    if (running) banner_->hide();  // the source runs: an earlier problem is over
+    if (running) banner_->clearError();  // the source runs: an earlier problem is over
   });
   connect(worker_, &Worker::sourceChanged, this, &MainWindow::showSource);
   connect(worker_, &Worker::resultsCleared, this, &MainWindow::clearShownResults);
@@ -222,7 +222,7 @@ void MainWindow::connectWorker() {
   connect(worker_, &Worker::filesOpened, this, [this](const QStringList& paths, int images) {
     for (const QString& p : paths) recent_->add(p);
     control_panel_->sourcePanel()->setFileCount(images);
-    banner_->hide();
+    banner_->clearError();
     plots_->clear();  // other images: their numbers are not the list's before
   });
   connect(worker_, &Worker::filesFailed, this, [this](const QStringList& paths) {

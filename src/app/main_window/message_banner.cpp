@@ -23,6 +23,7 @@ MessageBanner::MessageBanner(QWidget* parent) : QFrame(parent), label_(new QLabe
 }
 
 void MessageBanner::showError(const QString& text) {
+  warning_ = false;
   setStyleSheet(QStringLiteral("#messageBanner { background: #f8d7da; border: 1px solid #e0a0a8; }"
                                "#messageBanner QLabel { color: #721c24; }"));
   label_->setText(text);
@@ -30,10 +31,15 @@ void MessageBanner::showError(const QString& text) {
 }
 
 void MessageBanner::showWarning(const QString& text) {
+  warning_ = true;
   setStyleSheet(QStringLiteral("#messageBanner { background: #fff3cd; border: 1px solid #e6c766; }"
                                "#messageBanner QLabel { color: #664d03; }"));
   label_->setText(text);
   show();
+}
+
+void MessageBanner::clearError() {
+  if (!warning_) hide();
 }
 
 QString MessageBanner::text() const { return isVisible() ? label_->text() : QString(); }

@@ -14,10 +14,13 @@ class MessageBanner : public QFrame {
   explicit MessageBanner(QWidget* parent = nullptr);
   void showError(const QString& text);
   void showWarning(const QString& text);  // done, with something to know (a renamed key)
+  // Hides an error, which the next step's success ends; a warning stays until dismissed.
+  void clearError();
   QString text() const;
 
  private:
   QLabel* label_;
+  bool warning_ = false;
 };
 
 }  // namespace imagepro::app

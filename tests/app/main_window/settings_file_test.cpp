@@ -124,6 +124,14 @@ void SettingsFileTest::aRenamedKeyLoadsWithAWarning() {
   QVERIFY2(w.bannerText().contains(QStringLiteral("ambiguity_min_deg")) &&
                w.bannerText().contains(QStringLiteral("ambiguity_tolerance_deg")),
            qPrintable(w.bannerText()));
+  // A source that starts ends an earlier error, not this warning (as imagepro --config
+  // FILE --source virtual meets it).
+  w.startSource();
+  QTRY_VERIFY_WITH_TIMEOUT(w.worker()->isRunning(), 5000);
+  QTest::qWait(100);
+  QVERIFY2(w.bannerText().contains(QStringLiteral("ambiguity_tolerance_deg")), qPrintable(w.bannerText()));
+  w.stopSource();
+  QTRY_VERIFY_WITH_TIMEOUT(!w.worker()->isRunning(), 5000);
 }
 
 void SettingsFileTest::unreadableFileIsAnError() {
