@@ -14,8 +14,9 @@
 # imagepro-studies first (tools/setup.sh build).
 #
 # Two kinds of generated text:
-# * whole files written by a study's --out (tracking.md, calibration.md, accuracy.md;
-#   calibration.md keeps what follows its "Hand-written sections" line);
+# * a study's measured places in its hand-written doc (tracking.md, calibration.md,
+#   accuracy.md): the study given --out DOC fills every <!--m:NAME-->...<!--/m--> of DOC
+#   with its figures and leaves the prose as it is (src/studies/measured_doc.h);
 # * blocks inside hand-written docs, between the lines
 #     <!-- generated: COMMAND -->        (the output is Markdown, e.g. a table)
 #     <!-- generated code: COMMAND -->   (the output is shown in a ``` block)
@@ -50,7 +51,7 @@ timing_lines='^Calibration time on the machine that wrote this: '
 # The generators: name, cost (cheap: seconds; slow: minutes or a display), what they write.
 generators=(
   "tracking|cheap|docs/tracking.md, docs/tracking-*.png (track-study: the critical r, the runs of figs. 3.7-3.12; under 1 s)"
-  "calibration|cheap|docs/calibration.md above its hand-written sections (calibration-study, about 15 s of CPU)"
+  "calibration|cheap|the measured places of docs/calibration.md (calibration-study, about 15 s of CPU)"
   "blocks|cheap|the generated blocks of docs/*.md (each a few seconds at most)"
   "case-study-figures|cheap|docs/case-studies-*.png (two-targets --plot, pendulum --plots, 2 s)"
   "distortion-figures|cheap|docs/distortion-*.png (distortion-figures --plots, 1 s)"

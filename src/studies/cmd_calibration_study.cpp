@@ -3,7 +3,8 @@
 // about x and y, grey, blurred and noisy, through the thesis camera's distortion: the field
 // the procedure recovers against the true one over the whole image, next to OpenCV's
 // cv::calibrateCamera given the same spot grid; then the pose accuracy of the whole chain on
-// distorted target frames corrected with the recovered, the true and no parameters.
+// distorted target frames corrected with the recovered, the true and no parameters. The prose
+// is docs/calibration.md's own; the study fills in the figures at its measured places.
 #include <Eigen/Geometry>
 #include <opencv2/calib3d.hpp>
 
@@ -24,6 +25,7 @@
 #include "core/common/atomic_file.h"
 #include "core/pipeline/engine.h"
 #include "core/source/virtual_renderer.h"
+#include "studies/measured_doc.h"
 #include "studies/report.h"
 
 namespace imagepro::studies {
@@ -34,9 +36,6 @@ using namespace imagepro::cli;
 constexpr double kViewDistanceMm = 800.0;
 constexpr double kNoiseSigma = 3.0, kBlurSigmaPx = 0.8;
 constexpr double kDeg = M_PI / 180.0;
-// Everything from this line on in an existing FILE is written by hand (the application's
-// calibration wizard) and kept when the figures above it are measured again.
-constexpr const char* kKeptSectionsMarker = "<!-- Hand-written sections below: kept by imagepro-studies calibration-study -->";
 
 // OpenCV's model (normalised coordinates, k3 = 0 here) as a pixel displacement field.
 DisplacementField openCvField(const cv::Mat& K, const cv::Mat& dist) {
@@ -231,7 +230,8 @@ ChainStats runChain(const Settings& settings, const Distortion& correction, bool
 
 // The printed pages (imagepro-cli pattern) seen at the four views from a range of distances:
 // how far the matched spots reach, what the fit makes of it, and where PoorCoverage stops it.
-std::string coverageSection(const Settings& settings, const VirtualSceneOptions& scene, std::uint64_t seedBase) {
+void measureCoverage(const Settings& settings, const VirtualSceneOptions& scene, std::uint64_t seedBase,
+                     MeasuredValues& v) {
   const Paper papers[] = {Paper::A4, Paper::A3};
   const double distances[] = {300, 400, 500, 600, 700, 800, 900, 1000, 1200};
   constexpr double kGoodFieldPx = 0.05;  // half the issue's 0.1 px goal
@@ -245,40 +245,26 @@ std::string coverageSection(const Settings& settings, const VirtualSceneOptions&
     sheets[k].pattern.rows = page.grid_rows;
     grids += format("%s%s %d x %d spots", k ? ", " : "", paperName(papers[k]), page.grid_columns, page.grid_rows);
   }
-
-  std::string md = "\n## Coverage: how close the pattern must be\n\n";
-  md += format("The fit extrapolates eq. 4.7 beyond the matched spots, and its r^4 term goes wrong fast. So the\n"
-               "calibration also measures how far the spots it matched reach: the largest distance of a matched\n"
-               "spot's ideal position from the principal point, over the distance of the image's farthest corner\n"
-               "(`coverageRadiusFraction`, over every image used). Below %.2f it ends with `PoorCoverage` (\"the\n"
-               "pattern covers too little of the image to calibrate it to its corners: move the pattern closer or\n"
-               "print it larger\"), the estimate left in the result and no calibration file written.\n\n"
-               "The printed pages of `imagepro-cli pattern` with the settings' pattern (%s: the sheets\n"
-               "calibrated here), at the four views above from each distance (the target on the optical axis),\n"
-               "through the thesis camera, grey, blur 0.8 px, noise 3; reach, then the field error RMS / max:\n\n",
-               kMinCoverageRadiusFraction, grids.c_str());
-  md += "| distance (mm) | A4 | A3 |\n| --- | --- | --- |\n";
+  v["coverage.threshold"] = format("%.2f", kMinCoverageRadiusFraction);
+  v["coverage.sheets"] = grids;
+  std::string table = "| distance (mm) | A4 | A3 |\n| --- | --- | --- |\n";
   double farthestOk[2] = {0.0, 0.0};
   bool stillOk[2] = {true, true};
   for (const double d : distances) {
-    md += format("| %.0f |", d);
+    table += format("| %.0f |", d);
     for (size_t k = 0; k < 2; ++k) {
       const Trial t = runTrial(sheets[k], "", scene, seedBase + static_cast<std::uint64_t>(d), true, calibrationViews(d));
-      md += format(" %s, %.2f, %.3f / %.3f |", std::string(statusName(t.status)).c_str(),
-                   t.ours.coverage_radius_fraction, t.oursField.rms_px, t.oursField.max_px);
+      table += format(" %s, %.2f, %.3f / %.3f |", std::string(statusName(t.status)).c_str(),
+                      t.ours.coverage_radius_fraction, t.oursField.rms_px, t.oursField.max_px);
       stillOk[k] = stillOk[k] && ok(t.status);
       if (stillOk[k]) farthestOk[k] = d;
     }
-    md += "\n";
+    table += "\n";
   }
-  md += format("\nWorking distance with the thesis camera (640x480, d0 = 8 mm, 0.01 mm pixels), the target on the\n"
-               "optical axis: from %.0f mm (the nearest measured) up to %.0f mm for A4, %.0f mm for A3, the farthest\n"
-               "distance of the table up to which every calibration passed. The settings' default sheet (%d x %d\n"
-               "spots, %.0f x %.0f mm; the Virtual source's) fills the image at every distance of the views above;\n"
-               "a printed sheet that large must be assembled from pages or printed on a plotter.\n",
-               distances[0], farthestOk[0], farthestOk[1], settings.pattern.columns, settings.pattern.rows,
-               settings.pattern.columns * settings.pattern.spot_spacing_mm,
-               settings.pattern.rows * settings.pattern.spot_spacing_mm);
+  v["coverage.table"] = table;
+  v["coverage.nearest"] = format("%.0f", distances[0]);
+  v["coverage.farthest.A4"] = format("%.0f", farthestOk[0]);
+  v["coverage.farthest.A3"] = format("%.0f", farthestOk[1]);
 
   // The threshold: over both pages, views tilted 35 and 45 deg and three noise seeds, every run
   // whose fit converged (ok or PoorCoverage), by its reach.
@@ -312,16 +298,15 @@ std::string coverageSection(const Settings& settings, const VirtualSceneOptions&
       worstBelow = std::max(worstBelow, r.field);
     }
   }
-  md += format("\nThe threshold, measured: the same pages at the same distances, views tilted 35 and 45 deg, three\n"
-               "noise seeds each; of the %zu runs whose fit converged, those with a field error above %.2f px RMS\n"
-               "(half the 0.1 px goal) reached %.2f-%.2f of the corner distance. At or above %.2f: %d runs, the\n"
-               "largest field error %.3f px RMS. Below it: %d runs, %d of them above %.2f px, the largest %.3f px\n"
-               "RMS. The fit's residual does not tell them apart: at most %.3f px on the runs above %.2f px, as\n"
-               "small as a good calibration's.\n",
-               runs.size(), kGoodFieldPx, runs.empty() || highestBad == 0.0 ? 0.0 : lowestBad, highestBad,
-               kMinCoverageRadiusFraction, above, worstAbove, below, badBelow, kGoodFieldPx, worstBelow, badResidual,
-               kGoodFieldPx);
-  return md;
+  v["threshold.runs"] = std::to_string(runs.size());
+  v["threshold.good"] = format("%.2f", kGoodFieldPx);
+  v["threshold.bad.reach"] = format("%.2f-%.2f", runs.empty() || highestBad == 0.0 ? 0.0 : lowestBad, highestBad);
+  v["threshold.above"] = std::to_string(above);
+  v["threshold.above.worst"] = format("%.3f", worstAbove);
+  v["threshold.below"] = std::to_string(below);
+  v["threshold.below.bad"] = std::to_string(badBelow);
+  v["threshold.below.worst"] = format("%.3f", worstBelow);
+  v["threshold.bad.residual"] = format("%.3f", badResidual);
 }
 
 std::string distortionCells(const std::string& what, const Distortion& d) {
@@ -332,13 +317,127 @@ std::string distortionRow(const std::string& what, const Distortion& d, const st
   return distortionCells(what, d) + " " + tail + " |\n";
 }
 
+// The iteration's history, each view's spot matching and pose, and step 7 with and without the
+// pose correction.
+void measureIteration(const Trial& main, const Trial& thesis, MeasuredValues& v) {
+  v["main.status"] = std::string(statusName(main.status));
+  v["main.iterations"] = std::to_string(main.ours.iterations);
+  v["main.residual"] = format("%.4f", main.ours.rms_residual_px);
+  v["main.field.rms"] = format("%.4f", main.oursField.rms_px);
+  v["main.field.max"] = format("%.4f", main.oursField.max_px);
+  std::string iterations =
+      "| iteration | k1 (px^-2) | k2 (px^-4) | p1 (px^-1) | p2 (px^-1) | relative change, residual, spots |\n"
+      "| --- | --- | --- | --- | --- | --- |\n";
+  for (const CalibrationIteration& it : main.ours.history)
+    iterations += distortionRow(std::to_string(it.iteration), it.distortion,
+                                format("%.4f, %.4f px, %d", it.relative_change, it.rms_residual_px, it.matches));
+  v["iteration.table"] = iterations + distortionRow("true", kThesisCameraDistortion, "");
+
+  std::string views =
+      "| view | spots matched / expected | ambiguous | target's pose error (deg) | corrected pose error (deg) |\n"
+      "| --- | --- | --- | --- | --- |\n";
+  const auto truth = recommendedCalibrationViews(kViewDistanceMm);
+  double worstTarget = 0.0;
+  for (size_t i = 0; i < main.ours.images.size(); ++i) {
+    const CalibrationImageReport& im = main.ours.images[i];
+    const double targetError = rotationAngleBetweenDeg(rotationMatrix(im.target_pose), rotationMatrix(truth[i]));
+    worstTarget = std::max(worstTarget, targetError);
+    views += format("| Rx %+.0f, Ry %+.0f | %d / %d | %d | %.3f | %.4f |\n", truth[i].rx_deg, truth[i].ry_deg,
+                    im.match.matched, im.spots_expected, im.match.ambiguous, targetError,
+                    rotationAngleBetweenDeg(rotationMatrix(im.pose), rotationMatrix(truth[i])));
+  }
+  v["views.table"] = views;
+  v["views.worst"] = format("%.3f", worstTarget);
+
+  auto step7 = [](const char* what, const Trial& t) {
+    return format("| %s | %s | %d | %.4f | %.4f |\n", what, std::string(statusName(t.status)).c_str(),
+                  t.ours.iterations, t.oursField.rms_px, t.oursField.max_px);
+  };
+  v["step7.table"] = "| step 7 | status | iterations | field error RMS (px) | field error max (px) |\n"
+                     "| --- | --- | --- | --- | --- |\n" +
+                     step7("eq. 4.8 with pose correction (default)", main) + step7("eq. 4.8 alone (thesis)", thesis);
+}
+
+void measureOpenCv(const Trial& main, const std::vector<Trial>& trials, MeasuredValues& v) {
+  std::string table =
+      "| images | ours: status, iterations | ours: field error RMS / max (px) | OpenCV: field error RMS / max (px) "
+      "| OpenCV reprojection RMS (px) |\n| --- | --- | --- | --- | --- |\n";
+  auto trialRow = [&](const Trial& t) {
+    table += format("| %s | %s, %d | %.4f / %.4f | %.4f / %.4f | %.4f |\n", t.name.c_str(),
+                    std::string(statusName(t.status)).c_str(), t.ours.iterations, t.oursField.rms_px,
+                    t.oursField.max_px, t.cvField.rms_px, t.cvField.max_px, t.cv.reprojection_rms_px);
+  };
+  trialRow(main);
+  for (const Trial& t : trials) trialRow(t);
+  v["opencv.table"] = table;
+  v["opencv.parameters"] = "| | k1 (px^-2) | k2 (px^-4) | p1 (px^-1) | p2 (px^-1) |\n| --- | --- | --- | --- | --- |\n" +
+                           distortionCells("true", kThesisCameraDistortion) + "\n" +
+                           distortionCells("ours", main.ours.distortion) + "\n" +
+                           distortionCells("OpenCV", main.cv.asPixels) + "\n";
+  // The figures that vary from run to run: the docs check skips their line (tools/regenerate-docs.sh).
+  v["time.ours"] = format("%.0f", main.ms);
+  v["time.opencv"] = format("%.0f", main.cv.ms);
+}
+
+// The whole chain on distorted target frames, corrected with each set of parameters.
+void measureReconstruction(const Settings& settings, const Trial& main, int frames, int seed, MeasuredValues& v) {
+  std::fprintf(stderr, "pose accuracy over %d frames ...\n", frames);
+  const std::vector<ChainFrame> chain = chainFrames(settings, frames, static_cast<std::uint64_t>(seed));
+  const ChainStats withTrue = runChain(settings, kThesisCameraDistortion, true, chain);
+  const ChainStats withOurs = runChain(settings, main.ours.distortion, true, chain);
+  const ChainStats withCv = runChain(settings, main.cv.asPixels, true, chain);
+  const ChainStats without = runChain(settings, Distortion{}, false, chain);
+  const ChainStats noLens = runChain(settings, Distortion{}, false, chain, false);
+  int headOn = 0;
+  for (const ChainFrame& f : chain) headOn += f.tilt_deg < kHeadOnTiltDeg ? 1 : 0;
+  std::string table = format(
+      "| correction with | poses | rotation error median / 95th pct (deg) | rotation 95th pct, tilt 0-%.0f / %.0f-45 deg "
+      "| position error median / 95th pct (%%) |\n| --- | --- | --- | --- | --- |\n",
+      kHeadOnTiltDeg, kHeadOnTiltDeg);
+  auto chainRow = [&](const char* what, const ChainStats& c) {
+    table += format("| %s | %d / %d | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f |\n", what, c.ok, c.frames, c.rotMedian,
+                    c.rotP95, c.rotP95HeadOn, c.rotP95Tilted, c.posMedian, c.posP95);
+  };
+  chainRow("the true parameters", withTrue);
+  chainRow("the recovered parameters (ours)", withOurs);
+  chainRow("OpenCV's parameters", withCv);
+  chainRow("none (correction off)", without);
+  chainRow("no lens distortion in the frames (reference)", noLens);
+  v["chain.table"] = table;
+  v["chain.true.p95"] = format("%.3f", withTrue.rotP95);
+  v["chain.nolens.p95"] = format("%.3f", noLens.rotP95);
+  v["chain.headon"] = std::to_string(headOn);
+  v["chain.true.p95.headon"] = format("%.3f", withTrue.rotP95HeadOn);
+  v["chain.true.p95.tilted"] = format("%.3f", withTrue.rotP95Tilted);
+}
+
+// The smallest spot spacing the matching stays unambiguous at (thesis 4.3), and the pattern's.
+void measureSpacing(const Settings& settings, MeasuredValues& v) {
+  CameraModel expected = settings.camera();
+  expected.distortion = kThesisCameraDistortion;
+  const auto views = recommendedCalibrationViews(kViewDistanceMm);
+  const double withNeighbours = minimumSpotSpacingMm(expected, settings.target, settings.pattern, views, true);
+  const double idealOnly = minimumSpotSpacingMm(expected, settings.target, settings.pattern, views, false);
+  const SpacingCheck current = checkSpotSpacing(expected, settings.target, settings.pattern, views);
+  v["spacing.table"] =
+      "| matching | smallest unambiguous spacing |\n| --- | --- |\n" +
+      format("| from the origin outwards, predicted by the matched neighbours' displacement (ours) | %.1f mm |\n",
+             withNeighbours) +
+      format("| by the ideal positions alone | %.1f mm |\n", idealOnly);
+  v["spacing.worst"] = format("%.2f", current.worst_ratio);
+  v["spacing.gap"] = format("%.2f", current.smallest_gap_px);
+  v["spacing.verdict"] = current.unambiguous ? "unambiguous" : "NOT unambiguous";
+}
+
 int run(const Args& args) {
-  args.rejectUnknown({"out", "frames", "seed"});
+  args.rejectUnknown({"out", "template", "frames", "seed"});
   const auto out = args.value("out");
   if (!out) throw UsageError("--out FILE is required (e.g. docs/calibration.md)");
+  const std::string templatePath = args.valueOr("template", *out);
   const int frames = args.integer("frames", 200);
   if (frames < 10 || frames > 100000) throw UsageError("--frames must be 10..100000");
   const int seed = args.integer("seed", 1);
+  if (std::string error; !checkMeasuredDoc(templatePath, error)) throw InputError(error);
   const Settings settings = loadConfig(args);
   std::string command = "imagepro-studies calibration-study --out " + *out;
   if (args.has("frames")) command += " --frames " + std::to_string(frames);
@@ -353,6 +452,20 @@ int run(const Args& args) {
   VirtualSceneOptions clean = realistic;
   clean.noise_sigma = clean.blur_sigma_px = 0.0;
 
+  MeasuredValues v;
+  v["command"] = "`" + command + "`";
+  v["frames"] = std::to_string(frames);
+  const PatternGeometry& pattern = settings.pattern;
+  v["pattern.grid"] = format("%d x %d", pattern.columns, pattern.rows);
+  v["pattern.spacing"] = format("%g", pattern.spot_spacing_mm);
+  v["pattern.spot"] = format("%g", 2.0 * patternSpotRadiusMm(pattern));
+  v["pattern.card"] = format("%g", pattern.card_size_mm);
+  v["pattern.size"] =
+      format("%.0f x %.0f", pattern.columns * pattern.spot_spacing_mm, pattern.rows * pattern.spot_spacing_mm);
+  const FieldComparison whole = compareDistortionFields(settings.camera(), kThesisCameraDistortion, Distortion{});
+  v["lens.max"] = format("%.2f", whole.max_px);
+  v["lens.rms"] = format("%.2f", whole.rms_px);
+
   std::fprintf(stderr, "calibrating ...\n");
   const std::uint64_t base = static_cast<std::uint64_t>(seed) * 1000;
   const Trial main = runTrial(settings, "noise 3, blur 0.8", realistic, base + 1, true);
@@ -361,169 +474,16 @@ int run(const Args& args) {
   for (int k = 0; k < 4; ++k)
     trials.push_back(runTrial(settings, format("noise 3, blur 0.8, seed %d", k + 2), realistic, base + 21 + 10 * k, true));
   const Trial thesis = runTrial(settings, "thesis step 7 (no pose correction)", realistic, base + 1, false);
-
-  const CameraModel& cam = settings.camera();
-  const FieldComparison whole = compareDistortionFields(cam, kThesisCameraDistortion, Distortion{});
-
-  std::string md;
-  md += "# Lens distortion calibration: measured accuracy\n\n";
-  md += "Produced by `" + command + "` (" + std::to_string(frames) +
-        " target frames for the pose accuracy).\n\n";
-  md += "The procedure of thesis 4.6 (`core/calibration/calibrate.h`) on four virtual images of the\n";
-  md += format("calibration pattern (`core/calibration/pattern.h`; %d x %d spots %g mm apart, each %g mm across,\n"
-               "%g mm card; the section \"The pattern\" below) rotated\n",
-               settings.pattern.columns, settings.pattern.rows, settings.pattern.spot_spacing_mm,
-               2.0 * patternSpotRadiusMm(settings.pattern), settings.pattern.card_size_mm);
-  md += "+45 and -45 deg about x and then about y, the target on the optical axis 800 mm away, rendered by\n"
-        "the Virtual source's renderer through the thesis camera's lens (640x480, d0 = 8 mm, 0.01 mm pixels,\n"
-        "k1 = -2.05e-7, k2 = -1.21e-13, p1 = 3.39e-6, p2 = 2.56e-6, thesis 4.6), anti-aliased grey with\n"
-        "Gaussian blur sigma 0.8 px and noise sigma 3 grey levels. The procedure starts from zero distortion\n"
-        "and finds the pattern's pose from the target alone. The true distortion moves the image's corners\n";
-  md += format("by %.2f px (RMS over the image %.2f px).\n\n", whole.max_px, whole.rms_px);
-  md += "Field error: the recovered displacement field (eq. 4.7) minus the true one, at every pixel centre\n"
-        "of the 640x480 image taken as the undistorted position, RMS and largest.\n\n";
-
-  md += "## The iteration (thesis 4.6 steps 3-8)\n\n";
-  md += "| iteration | k1 (px^-2) | k2 (px^-4) | p1 (px^-1) | p2 (px^-1) | relative change, residual, spots |\n";
-  md += "| --- | --- | --- | --- | --- | --- |\n";
-  for (const CalibrationIteration& it : main.ours.history)
-    md += distortionRow(std::to_string(it.iteration), it.distortion,
-                        format("%.4f, %.4f px, %d", it.relative_change, it.rms_residual_px, it.matches));
-  md += distortionRow("true", kThesisCameraDistortion, "");
-  md += format("\nStatus %s after %d iterations (the thesis: 3; limit asked: 5), RMS residual %.4f px.\n"
-               "**Field error %.4f px RMS, %.4f px largest** (asked: at most 0.1 px RMS).\n\n",
-               std::string(statusName(main.status)).c_str(), main.ours.iterations, main.ours.rms_residual_px,
-               main.oursField.rms_px, main.oursField.max_px);
-  md += "| view | spots matched / expected | ambiguous | target's pose error (deg) | corrected pose error (deg) |\n";
-  md += "| --- | --- | --- | --- | --- |\n";
-  const auto views = recommendedCalibrationViews(kViewDistanceMm);
-  for (size_t i = 0; i < main.ours.images.size(); ++i) {
-    const CalibrationImageReport& im = main.ours.images[i];
-    md += format("| Rx %+.0f, Ry %+.0f | %d / %d | %d | %.3f | %.4f |\n", views[i].rx_deg, views[i].ry_deg,
-                 im.match.matched, im.spots_expected, im.match.ambiguous,
-                 rotationAngleBetweenDeg(rotationMatrix(im.target_pose), rotationMatrix(views[i])),
-                 rotationAngleBetweenDeg(rotationMatrix(im.pose), rotationMatrix(views[i])));
-  }
-  double worstTarget = 0.0;
-  for (size_t i = 0; i < main.ours.images.size(); ++i)
-    worstTarget = std::max(worstTarget, rotationAngleBetweenDeg(rotationMatrix(main.ours.images[i].target_pose),
-                                                                rotationMatrix(views[i])));
-  md += format("\nThe target gives each view's pose to within %.3f deg here. The pattern reaches 700 mm and more\n"
-               "from the target, where such an error moves the spots' ideal positions by tenths of a pixel, and\n"
-               "eq. 4.8 alone takes that for distortion. So step 7 solves eq. 4.8 together with a linearised\n"
-               "correction of each image's pose (six more columns per image; `fitDistortionAndPoses`), and the\n"
-               "next iteration starts from the corrected pose. With the thesis's step 7 alone (eq. 4.8 over the\n"
-               "target's poses, `pipeline.calibration.refine_pose = false`) on the same images:\n\n",
-               worstTarget);
-  md += format("| step 7 | status | iterations | field error RMS (px) | field error max (px) |\n| --- | --- | --- | --- | --- |\n");
-  md += format("| eq. 4.8 with pose correction (default) | %s | %d | %.4f | %.4f |\n",
-               std::string(statusName(main.status)).c_str(), main.ours.iterations, main.oursField.rms_px,
-               main.oursField.max_px);
-  md += format("| eq. 4.8 alone (thesis) | %s | %d | %.4f | %.4f |\n\n",
-               std::string(statusName(thesis.status)).c_str(), thesis.ours.iterations, thesis.oursField.rms_px,
-               thesis.oursField.max_px);
-
-  md += "## Side by side with OpenCV\n\n";
-  md += "`cv::calibrateCamera` on the same images' spot grid: the plane positions of the spots the procedure\n"
-        "matched in its last iteration and their measured centres, focal lengths and principal point fixed at\n"
-        "the camera's (`CALIB_USE_INTRINSIC_GUESS | CALIB_FIX_FOCAL_LENGTH | CALIB_FIX_PRINCIPAL_POINT`),\n"
-        "k1, k2, p1, p2 free, k3 fixed at 0 (`CALIB_FIX_K3`). OpenCV's model is eq. 4.7 in normalised\n"
-        "coordinates, so with fx = fy = f its parameters are k1 f^2, k2 f^4, p1 f, p2 f of ours; both fields\n"
-        "are compared as pixel displacement fields, the same way.\n\n";
-  md += "| images | ours: status, iterations | ours: field error RMS / max (px) | OpenCV: field error RMS / max (px) | OpenCV reprojection RMS (px) |\n";
-  md += "| --- | --- | --- | --- | --- |\n";
-  auto trialRow = [&](const Trial& t) {
-    md += format("| %s | %s, %d | %.4f / %.4f | %.4f / %.4f | %.4f |\n", t.name.c_str(),
-                 std::string(statusName(t.status)).c_str(), t.ours.iterations, t.oursField.rms_px,
-                 t.oursField.max_px, t.cvField.rms_px, t.cvField.max_px, t.cv.reprojection_rms_px);
-  };
-  trialRow(main);
-  for (const Trial& t : trials) trialRow(t);
-  md += "\nParameters of the first row (OpenCV's converted to pixel units):\n\n";
-  md += "| | k1 (px^-2) | k2 (px^-4) | p1 (px^-1) | p2 (px^-1) |\n| --- | --- | --- | --- | --- |\n";
-  md += distortionCells("true", kThesisCameraDistortion) + "\n";
-  md += distortionCells("ours", main.ours.distortion) + "\n";
-  md += distortionCells("OpenCV", main.cv.asPixels) + "\n";
-  // The one line that varies from run to run: the docs check skips it (tools/regenerate-docs.sh).
-  md += format("\nCalibration time on the machine that wrote this: ours %.0f ms, OpenCV %.0f ms.\n", main.ms, main.cv.ms);
-  md += "\nBoth fit the same model to the same spot centres; ours with each image's pose from the target\n"
-        "corrected linearly, OpenCV by Levenberg-Marquardt over all poses and parameters from its own\n"
-        "homography start. Their fields agree to the noise of the spot centres.\n\n";
-
-  std::fprintf(stderr, "pose accuracy over %d frames ...\n", frames);
-  const std::vector<ChainFrame> chain = chainFrames(settings, frames, static_cast<std::uint64_t>(seed));
-  const ChainStats withTrue = runChain(settings, kThesisCameraDistortion, true, chain);
-  const ChainStats withOurs = runChain(settings, main.ours.distortion, true, chain);
-  const ChainStats withCv = runChain(settings, main.cv.asPixels, true, chain);
-  const ChainStats without = runChain(settings, Distortion{}, false, chain);
-  const ChainStats noLens = runChain(settings, Distortion{}, false, chain, false);
-  int headOn = 0;
-  for (const ChainFrame& f : chain) headOn += f.tilt_deg < kHeadOnTiltDeg ? 1 : 0;
-  md += "## Reconstruction with the recovered parameters\n\n";
-  md += format("%d virtual target frames through the same lens (grey, blur 0.8 px, noise 3), the target anywhere "
-               "in the\nimage with its whole card, 500-1000 mm away, tilted up to 45 deg; the whole chain (detection, "
-               "features,\ndistortion correction by the Taylor inverse, pose; default settings) with each set of "
-               "parameters.\nRotation error: the angle of R_true^-1 R_est; position error: |T_est - T_true| in %% of "
-               "the distance\n(the measure of docs/accuracy.md).\n\n",
-               frames);
-  md += format("| correction with | poses | rotation error median / 95th pct (deg) | rotation 95th pct, tilt "
-               "0-%.0f / %.0f-45 deg | position error median / 95th pct (%%) |\n",
-               kHeadOnTiltDeg, kHeadOnTiltDeg);
-  md += "| --- | --- | --- | --- | --- |\n";
-  auto chainRow = [&](const char* what, const ChainStats& c) {
-    md += format("| %s | %d / %d | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f |\n", what, c.ok, c.frames, c.rotMedian,
-                 c.rotP95, c.rotP95HeadOn, c.rotP95Tilted, c.posMedian, c.posP95);
-  };
-  chainRow("the true parameters", withTrue);
-  chainRow("the recovered parameters (ours)", withOurs);
-  chainRow("OpenCV's parameters", withCv);
-  chainRow("none (correction off)", without);
-  chainRow("no lens distortion in the frames (reference)", noLens);
-  md += format(
-      "\nThe recovered parameters reconstruct as well as the true ones. The 95th percentile of the rotation error,\n"
-      "%.3f deg with the true parameters, is set by this scene, not by the calibration: the same frames rendered\n"
-      "without any lens distortion still give %.3f deg (last row). It comes from the frames seen nearly head-on\n"
-      "(tilt below %.0f deg: %d of the %d here), where the rim's ellipse is almost a circle and its normal\n"
-      "poorly determined: their 95th percentile is %.3f deg, that of the others %.3f deg. docs/accuracy.md\n"
-      "measures its 95th percentile (goal 0.5 deg) on another scene: tilt 0-60 deg (a quarter of its frames below\n"
-      "15 deg, against a third here), distance 400-1200 mm, and noise 0-3 grey levels and blur 0-1 px drawn per\n"
-      "frame, where every frame here has noise 3 and blur 0.8; there too the 0-15 deg band has by far the largest\n"
-      "95th percentile.\n",
-      withTrue.rotP95, noLens.rotP95, kHeadOnTiltDeg, headOn, withTrue.frames, withTrue.rotP95HeadOn,
-      withTrue.rotP95Tilted);
+  measureIteration(main, thesis, v);
+  measureOpenCv(main, trials, v);
+  measureReconstruction(settings, main, frames, seed, v);
   std::fprintf(stderr, "coverage of the printed pages ...\n");
-  md += coverageSection(settings, realistic, base + 100);
+  measureCoverage(settings, realistic, base + 100, v);
+  measureSpacing(settings, v);
 
-  md += "\n## The spot spacing (thesis 4.3)\n\n";
-  CameraModel expected = cam;
-  expected.distortion = kThesisCameraDistortion;
-  const double withNeighbours = minimumSpotSpacingMm(expected, settings.target, settings.pattern, views, true);
-  const double idealOnly = minimumSpotSpacingMm(expected, settings.target, settings.pattern, views, false);
-  const SpacingCheck current = checkSpotSpacing(expected, settings.target, settings.pattern, views);
-  md += "The smallest spacing that never gives a matching ambiguity for the expected distortion\n"
-        "(`core/calibration/spacing.h`): in the first iteration (estimate zero), at the four views above, every\n"
-        "spot must match its own image with its prediction within half its gate (half the local spacing),\n"
-        "and neighbouring spots must stay more than 3 px apart for the spot finder. For the thesis camera:\n\n";
-  md += "| matching | smallest unambiguous spacing |\n| --- | --- |\n";
-  md += format("| from the origin outwards, predicted by the matched neighbours' displacement (ours) | %.1f mm |\n",
-               withNeighbours);
-  md += format("| by the ideal positions alone | %.1f mm |\n\n", idealOnly);
-  md += format("The pattern's %.0f mm: worst prediction error %.2f of the gate, smallest gap between spots %.2f px, "
-               "%s.\n",
-               settings.pattern.spot_spacing_mm, current.worst_ratio, current.smallest_gap_px,
-               current.unambiguous ? "unambiguous" : "NOT unambiguous");
-  md += "Searched in 0.5 mm steps with the sheet kept at its size. With the neighbours' displacement the\n"
-        "unexplained displacement only has to change by less than half a spacing from one spot to the next,\n"
-        "so it is the spots' separation on the far side of the tilted views that sets the limit; matching by\n"
-        "the ideal positions alone needs the whole displacement (16 px at the corners) within a quarter of\n"
-        "the local spacing.\n";
-
-  std::string existing, error;
-  if (readWholeFile(*out, existing, error)) {
-    const auto kept = existing.find(kKeptSectionsMarker);
-    if (kept != std::string::npos) md += "\n" + existing.substr(kept);
-  }
-  if (!writeFileAtomically(*out, md, error)) throw InputError(error);
+  // Every place of the doc is this study's: all are filled.
+  std::string error;
+  if (!fillMeasuredDoc(templatePath, *out, v, {""}, error)) throw InputError(error);
   std::printf("wrote %s\n", out->c_str());
   return 0;
 }
@@ -531,13 +491,16 @@ int run(const Args& args) {
 const CommandRegistration kRegistration{{
     "calibration-study",
     "measure the distortion calibration against the truth and OpenCV (docs/calibration.md)",
-    "usage: imagepro-studies calibration-study --out FILE [--frames N] [--seed S] [--config FILE]\n\n"
+    "usage: imagepro-studies calibration-study --out FILE [--template DOC] [--frames N] [--seed S]\n"
+    "                                         [--config FILE]\n\n"
     "Calibrates from four virtual pattern views (+-45 deg about x and y, grey, blurred, noisy,\n"
     "the thesis camera's distortion) and compares the recovered distortion field with the true one\n"
     "and with OpenCV's cv::calibrateCamera on the same spot grid; then reconstructs N distorted\n"
     "target frames (default 200) with the recovered, OpenCV's, the true and no parameters.\n"
-    "Writes the figures as Markdown to FILE, keeping the hand-written sections at the end of an\n"
-    "existing FILE (from the marker line they start with on).",
+    "Fills the measured places (<!--m:NAME-->...<!--/m-->) of the hand-written doc given with\n"
+    "--template (default: FILE itself, e.g. docs/calibration.md) and writes it to FILE; the prose\n"
+    "stays as written. A doc without a place for a figure, or with a place the study does not\n"
+    "fill, is refused with the place named.",
     {},
     run,
 }};

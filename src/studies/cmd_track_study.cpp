@@ -4,7 +4,7 @@
 // sinusoid, saw-tooth and pendulum motions of the Virtual source — checks the default
 // strategy (target inside the region in every frame, region size), and writes
 // docs/tracking.md with the thesis's figures beside ours and the plots of figs. 3.2-3.3
-// and 3.7-3.12.
+// and 3.7-3.12. The prose is docs/tracking.md's own; the study fills in its measured places.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -18,6 +18,7 @@
 #include "core/pipeline/engine.h"
 #include "core/source/sources.h"
 #include "core/tracking/tracker.h"
+#include "studies/measured_doc.h"
 
 namespace imagepro::studies {
 namespace {
@@ -222,10 +223,12 @@ std::string fmt(double v, int decimals) {
 }
 
 int run(const Args& args) {
-  args.rejectUnknown({"frames", "out", "plot"});
+  args.rejectUnknown({"frames", "out", "template", "plot"});
   const int frames = args.integer("frames", 250);
   if (frames < 20) throw UsageError("--frames must be at least 20");
   const std::string out_path = args.valueOr("out", "docs/tracking.md");
+  const std::string template_path = args.valueOr("template", out_path);
+  if (std::string error; !checkMeasuredDoc(template_path, error)) throw InputError(error);
   const std::string plot_path =
       args.valueOr("plot", (std::filesystem::path(out_path).parent_path() / "tracking-sinusoid.png").string());
 
@@ -282,22 +285,12 @@ int run(const Args& args) {
   const std::string r_plot_path = (plot_dir / "tracking-critical-r.png").string();
   if (!writePlotPng(r_plot_path, r_plot, error)) throw InputError(error);
 
-  std::ostringstream md;
-  md << "# Target tracking (thesis chapter 3)\n\n"
-        "Produced by `imagepro-studies track-study --frames "
-     << frames << " --out " << out_path
-     << "` on virtual binary 640x480 frames at 25 Hz: the target 800 mm away "
-        "moving along x (sinusoid and saw-tooth, the thesis's zig-zag: amplitude 150 mm, period 4 s) and a "
-        "pendulum (length 444 mm, amplitude 15 deg, pivot 350 mm above the camera axis, 900 mm away). The "
-        "detections are made once per motion with tracking off, then replayed through the tracker for each "
-        "strategy; the error is |measured - estimated| of each coordinate of the target's bounding-box "
-        "corners (eq. 3.8), in pixels, pooled over the four coordinates. The thesis's pendulum was a real one; "
-        "ours is virtual. Each cell reads *ours (thesis)*.\n\n";
-  const char* titles[3] = {"Maximum absolute estimation error [px] (table 3.1)",
-                           "Mean absolute estimation error [px] (table 3.2)",
-                           "Standard deviation of the absolute estimation error [px] (table 3.3)"};
+  MeasuredValues v;
+  v["command"] = "`imagepro-studies track-study --frames " + std::to_string(frames) + " --out " + out_path + "`";
+  const char* keys[3] = {"table.max", "table.mean", "table.std"};
   for (int table = 0; table < 3; ++table) {
-    md << "## " << titles[table] << "\n\n| motion |";
+    std::ostringstream md;
+    md << "| motion |";
     for (const char* strat : {"2D, 5", "2D, 10", "3D, 5", "3D, 10"})
       for (int d = 0; d <= 3; ++d) md << ' ' << strat << ", deg " << d << " |";
     md << "\n|---|";
@@ -314,78 +307,68 @@ int run(const Args& args) {
         }
       md << "\n";
     }
-    md << "\n";
+    v[keys[table]] = md.str();
   }
   const TrackingOptions& d = Settings{}.pipeline.tracking;
-  md << "## The default strategy, live\n\n"
-        "Engine with the default tracking options (2D corners, degree "
-     << d.degree << ", last " << d.data_points << " points, min r " << d.min_r << ", red " << d.reduction_percent
-     << " %, enlargement " << d.enlarge_px << " px + " << d.enlarge_scale << " x size + " << d.enlarge_speed_scale
-     << " x size per px/frame of speed). *Inside*: frames whose searched region holds the whole projected target; "
-        "the goal is every tracked frame, with a mean region of at most 10 % of the frame. From a single "
-        "detection (the first frame, or the first after a loss) the next frame is searched about it, enlarged as "
-        "usual and by a quarter of its size on every side, and the whole frame at once when that misses; the "
-        "estimation errors of the tables above count the estimates from two detections on.\n\n"
-        "| motion | frames | target found | tracked frames | target wholly inside | mean region / frame |\n"
-        "|---|---|---|---|---|---|\n";
-  for (std::size_t k = 0; k < ms.size(); ++k) {
-    const DefaultCheck& c = defaults[k];
-    md << "| " << ms[k].name << " | " << c.frames << " | " << c.found << " | " << c.tracked << " | " << c.inside << " ("
-       << fmt(c.tracked ? 100.0 * c.inside / c.tracked : 0.0, 1) << " %) | " << fmt(100.0 * c.mean_area, 1) << " % |\n";
+  auto text = [](const auto& x) {
+    std::ostringstream o;
+    o << x;
+    return o.str();
+  };
+  v["default.degree"] = text(d.degree);
+  v["default.points"] = text(d.data_points);
+  v["default.min_r"] = text(d.min_r);
+  v["default.reduction"] = text(d.reduction_percent);
+  v["default.enlarge_px"] = text(d.enlarge_px);
+  v["default.enlarge_scale"] = text(d.enlarge_scale);
+  v["default.enlarge_speed"] = text(d.enlarge_speed_scale);
+  {
+    std::ostringstream md;
+    md << "| motion | frames | target found | tracked frames | target wholly inside | mean region / frame |\n"
+          "|---|---|---|---|---|---|\n";
+    for (std::size_t k = 0; k < ms.size(); ++k) {
+      const DefaultCheck& c = defaults[k];
+      md << "| " << ms[k].name << " | " << c.frames << " | " << c.found << " | " << c.tracked << " | " << c.inside
+         << " (" << fmt(c.tracked ? 100.0 * c.inside / c.tracked : 0.0, 1) << " %) | " << fmt(100.0 * c.mean_area, 1)
+         << " % |\n";
+    }
+    v["default.table"] = md.str();
   }
-  md << "\n## The critical correlation coefficient (thesis figs. 3.2-3.3)\n\n"
-        "When the fit's correlation coefficient r drops below the critical value, the tracker falls back to a "
-        "line through the last two points and grows back one step a frame (3.3.1). The thesis chose the critical "
-        "value as the lowest r its fits reached on two motions whose character does not change (a camera turning "
-        "at constant speed, a small swing; figs. 3.2-3.3). Here the default strategy is replayed over the three "
-        "motions with each critical r; the cells are the maximum (mean) absolute estimation error in pixels:\n\n"
-        "| critical r |";
-  for (const Motion& m : ms) md << ' ' << m.name << " |";
-  md << "\n|---|";
-  for (std::size_t k = 0; k < ms.size(); ++k) md << "---|";
-  md << "\n";
-  for (std::size_t i = 0; i < critical_r.size(); ++i) {
-    md << "| " << critical_r[i] << (critical_r[i] == d.min_r ? " (default)" : "") << " |";
-    for (std::size_t k = 0; k < ms.size(); ++k)
-      md << ' ' << fmt(sweep[k][i].max, 1) << " (" << fmt(sweep[k][i].mean, 2) << ") |";
+  {
+    std::ostringstream md;
+    md << "| critical r |";
+    for (const Motion& m : ms) md << ' ' << m.name << " |";
+    md << "\n|---|";
+    for (std::size_t k = 0; k < ms.size(); ++k) md << "---|";
     md << "\n";
+    for (std::size_t i = 0; i < critical_r.size(); ++i) {
+      md << "| " << critical_r[i] << (critical_r[i] == d.min_r ? " (default)" : "") << " |";
+      for (std::size_t k = 0; k < ms.size(); ++k)
+        md << ' ' << fmt(sweep[k][i].max, 1) << " (" << fmt(sweep[k][i].mean, 2) << ") |";
+      md << "\n";
+    }
+    v["critical.table"] = md.str();
   }
-  md << "\nThe default 0.9 follows the thesis's rule, read off these runs: it is the highest value at which the "
-        "fallback never fires on a motion whose character does not change. At and below it the results are the "
-        "same to the last digit (no fit of these motions falls below it); from 0.95 the pendulum's fits start to "
-        "trip it, and from 0.98 the fallback's straight line, used where the swing curves, raises the pendulum's "
-        "largest error by 40 % and, at 0.999, the sinusoid's too. On the saw-tooth a high critical r halves the "
-        "mean error at the turns but not the largest, which the region's enlargement has to cover anyway.\n";
-  md << "\n![estimation error against the critical r](" << std::filesystem::path(r_plot_path).filename().string()
-     << ")\n\n*The maximum estimation error of each motion against the critical r (`" << r_plot_path
-     << "`, written by the same command).*\n";
-  md << "\n## The tracking runs (thesis figs. 3.7-3.12)\n\n"
-        "The thesis plotted, for each motion, the run of the strategy it found best with 2D corners and with 3D "
-        "parameters (3.4: sinusoid 2D degree 2 and 3D degree 1, saw-tooth 2D and 3D degree 2, its real pendulum "
-        "2D and 3D degree 3, each on the last 5 points), and read off the six figures that the estimation error "
-        "never exceeds 10 px, small beside the image. Here each figure is the same strategy replayed over the same "
-        "detections as the tables: the upper-left corner's u, estimated (green) from the frames before, measured "
-        "(blue) in the frame, and true (grey: the true pose's projected target, under the measured curve "
-        "where the detection is exact). *Largest error* is the largest |estimated - measured| of that corner "
-        "in the plotted run (the tables pool the four corner coordinates).\n\n"
-        "| thesis figure | motion | strategy | degree, points | largest error [px] | plot |\n"
-        "|---|---|---|---|---|---|\n";
-  for (std::size_t i = 0; i < std::size(kTrackingFigures); ++i) {
-    const TrackingFigure& f = kTrackingFigures[i];
-    md << "| " << f.thesis_figure << " | " << ms[f.motion].name << " | " << strategyName(f.mode) << " | " << f.degree
-       << ", 5 | " << fmt(figure_largest[i], 1) << " | `" << std::filesystem::path(figure_paths[i]).filename().string()
-       << "` |\n";
-  }
-  for (std::size_t i = 0; i < std::size(kTrackingFigures); ++i) {
-    const TrackingFigure& f = kTrackingFigures[i];
-    md << "\n![" << ms[f.motion].name << ", " << strategyName(f.mode) << "]("
-       << std::filesystem::path(figure_paths[i]).filename().string() << ")\n\n*Thesis fig. " << f.thesis_figure
-       << ": " << ms[f.motion].name << ", " << strategyName(f.mode) << ", degree " << f.degree
-       << ", last 5 points.*\n";
+  v["critical.plot"] = "`" + r_plot_path + "`";
+  {
+    std::ostringstream table, images;
+    table << "| thesis figure | motion | strategy | degree, points | largest error [px] | plot |\n"
+             "|---|---|---|---|---|---|\n";
+    for (std::size_t i = 0; i < std::size(kTrackingFigures); ++i) {
+      const TrackingFigure& f = kTrackingFigures[i];
+      const std::string file = std::filesystem::path(figure_paths[i]).filename().string();
+      table << "| " << f.thesis_figure << " | " << ms[f.motion].name << " | " << strategyName(f.mode) << " | "
+            << f.degree << ", 5 | " << fmt(figure_largest[i], 1) << " | `" << file << "` |\n";
+      images << (i ? "\n" : "") << "![" << ms[f.motion].name << ", " << strategyName(f.mode) << "](" << file
+             << ")\n\n*Thesis fig. " << f.thesis_figure << ": " << ms[f.motion].name << ", " << strategyName(f.mode)
+             << ", degree " << f.degree << ", last 5 points.*\n";
+    }
+    v["figures.table"] = table.str();
+    v["figures.images"] = images.str();
   }
 
-  if (!writeFileAtomically(out_path, md.str(), error)) throw InputError(error);
-  std::printf("%s", md.str().c_str());
+  // Every place of the doc is this study's: all are filled.
+  if (!fillMeasuredDoc(template_path, out_path, v, {""}, error)) throw InputError(error);
   std::fprintf(stderr, "wrote %s, %s, the other figures beside it and %s\n", out_path.c_str(), plot_path.c_str(),
                r_plot_path.c_str());
   return 0;
@@ -394,7 +377,7 @@ int run(const Args& args) {
 const CommandRegistration kRegistration{{
     "track-study",
     "reproduce thesis tables 3.1-3.3 (tracking errors) and write docs/tracking.md with a plot",
-    "usage: imagepro-studies track-study [--frames N] [--out FILE.md] [--plot FILE.png]\n\n"
+    "usage: imagepro-studies track-study [--frames N] [--out FILE.md] [--template DOC] [--plot FILE.png]\n\n"
     "Runs the sinusoid, saw-tooth and pendulum motions of the Virtual source, replays\n"
     "the detections through every tracking strategy (2D/3D, last 5/10 points, degree\n"
     "0-3), and writes the maximum, mean and standard deviation of the corner estimation\n"
@@ -404,7 +387,9 @@ const CommandRegistration kRegistration{{
     "upper-left corner's u estimated, measured and true over the frames, fig. 3.7 in\n"
     "the --plot file and the others beside it (tracking-sinusoid-3d.png,\n"
     "tracking-saw-tooth-2d.png, -3d, tracking-pendulum-2d.png, -3d). Defaults: 250\n"
-    "frames, docs/tracking.md, docs/tracking-sinusoid.png.",
+    "frames, docs/tracking.md, docs/tracking-sinusoid.png. The figures fill the measured\n"
+    "places (<!--m:NAME-->...<!--/m-->) of the hand-written doc given with --template\n"
+    "(default: the --out file itself); its prose stays as written.",
     {},
     run,
 }};

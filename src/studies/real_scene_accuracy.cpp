@@ -1,3 +1,5 @@
+// The accuracy study's real-scene part: the frames, both detectors on them, and the values of
+// docs/accuracy.md's real.* and webcam.* places; the prose around them lives in the doc.
 #include "studies/real_scene_accuracy.h"
 
 #include <algorithm>
@@ -255,55 +257,47 @@ std::vector<Row> stillRows() {
   return rows;
 }
 
-std::string missedLine(const std::vector<std::string>& missed) {
-  if (missed.empty()) return "The target meets every goal here.\n\n";
+// The sentence after a table of goals: met, or the measures whose goals the target missed.
+std::string verdict(const std::vector<std::string>& missed) {
+  if (missed.empty()) return "The target meets every goal here.";
   std::string out = "**Goals not met by the target:** ";
   for (std::size_t i = 0; i < missed.size(); ++i) out += (i ? "; " : "") + missed[i];
-  return out + ".\n\n";
+  return out + ".";
 }
 
 }  // namespace
 
-std::string realSceneSection(const Settings& settings, const RealSceneStudyOptions& o, const RealSceneStudy& study) {
+void measureRealScenes(const Settings& settings, const RealSceneStudyOptions& o, const RealSceneStudy& study,
+                       MeasuredValues& v) {
   const CameraModel& cam = settings.camera();
-  std::string md = "## Real scenes: the target over photographs\n\n";
-  md += format(
-      "%d stills, %d negatives and %d videos of %d frames (the target hidden for %d frames in the middle of each), "
-      "%.0f s. `imagepro-cli render --scene real --frames %d --negatives %d --seed %d` writes the same stills and "
-      "negatives, `imagepro-cli render --scene video --frames %d --hidden %d --seed N` the videos (N = %d to %d); "
-      "the user manual describes them. The settings' target (disk R = %.0f mm on a %.0f mm black card) and camera "
-      "(%dx%d, d0 = %.1f mm, pixel %.3f mm%s) over the %zu photographs of %s. Stills: the target 0.4-2.5 m away, "
-      "tilted 0-60 deg, paper white 170-235 and card black 10-40, light +-40 %% (a ramp or a vignette), optical blur "
-      "0.5-1.6 px, motion blur 2-6 px on a third of them, noise sigma 1-6, JPEG quality 40-95; a negative is a still's "
-      "photograph and conditions without the target. Videos: one photograph each, the target moving at 0.4-1.4 m, "
-      "light drifting +-30 %%, blur 0.8 px, noise sigma 2, JPEG 75.\n\n",
-      o.stills, o.negatives, o.videos, o.video_frames, o.hidden, study.seconds, o.stills, o.negatives,
-      static_cast<int>(o.seed), o.video_frames, o.hidden, static_cast<int>(o.seed),
-      static_cast<int>(o.seed) + std::max(o.videos, 1) - 1, settings.target.radius_mm,
-      settings.virtual_scene.card_size_mm, cam.width, cam.height, cam.image_plane_distance_mm, cam.pixel_size_mm[0],
-      cam.distortion.isZero() ? ", no lens distortion" : ", with the settings' lens distortion", study.photos,
-      study.backgrounds.c_str());
-  md += "Each still goes through the default pipeline alone (tracking reset); each video is tracked frame to frame, "
-        "as a camera's stream. The reference is the ArUco marker of the sections above (DICT_4X4_50, its black "
-        "square as wide as the disk, on a white card of the target card's size), drawn by the same generator in the "
-        "target's place: the same pose, photograph, paper and ink, light, blur, motion blur, noise and JPEG, frame "
-        "by frame. It is found in every frame alone by `cv::aruco::detectMarkers` with its default parameters "
-        "(adaptive thresholds over windows of 3-23 px) and sub-pixel corner refinement, and solved by IPPE. A pose "
-        "is correct when its rotation error (the angle of R_true^-1 R_est) is at most 5 deg; medians and 95th "
-        "percentiles are over every pose reported, correct or not. The goals are the target's. The evaluation "
-        "test (`ctest -R RealScenes`) holds the default pipeline to floors on 120 stills and one video of seed 1: "
-        "with that seed, this report's first 120 stills and its first video.\n\n";
+  const int seed = static_cast<int>(o.seed);
+  v["real.stills"] = format("%d", o.stills);
+  v["real.negatives"] = format("%d", o.negatives);
+  v["real.videos"] = format("%d", o.videos);
+  v["real.video_frames"] = format("%d", o.video_frames);
+  v["real.hidden"] = format("%d", o.hidden);
+  v["real.seconds"] = format("%.0f", study.seconds);
+  v["real.stills_command"] =
+      format("`imagepro-cli render --scene real --frames %d --negatives %d --seed %d`", o.stills, o.negatives, seed);
+  v["real.videos_command"] =
+      format("`imagepro-cli render --scene video --frames %d --hidden %d --seed N`", o.video_frames, o.hidden);
+  v["real.first_seed"] = format("%d", seed);
+  v["real.last_seed"] = format("%d", seed + std::max(o.videos, 1) - 1);
+  v["real.disk_radius_mm"] = format("%.0f", settings.target.radius_mm);
+  v["real.card_mm"] = format("%.0f", settings.virtual_scene.card_size_mm);
+  v["real.image_size"] = format("%dx%d", cam.width, cam.height);
+  v["real.d0_mm"] = format("%.1f", cam.image_plane_distance_mm);
+  v["real.pixel_mm"] = format("%.3f", cam.pixel_size_mm[0]);
+  v["real.lens"] = cam.distortion.isZero() ? "no lens distortion" : "with the settings' lens distortion";
+  v["real.photos"] = format("%zu", study.photos);
+  v["real.backgrounds"] = study.backgrounds;
 
   std::vector<std::string> missed;
-  md += "### Stills and negatives\n\n";
-  std::vector<Row> rows = stillRows();
-  md += table(rows, study, missed) + "\n";
-  md += missedLine(missed);
-
+  v["real.stills_table"] = table(stillRows(), study, missed);
+  v["real.stills_verdict"] = verdict(missed);
   if (o.videos > 0) {
     missed.clear();
-    md += "### Videos\n\n";
-    rows = poseRows(&DetectorTally::video, "the visible frames");
+    std::vector<Row> rows = poseRows(&DetectorTally::video, "the visible frames");
     rows.insert(rows.begin() + 3,
                 Row{"poses while the target is hidden", "0",
                     [](const DetectorTally& d) { return format("%d of %d", d.found_in_hiding, d.hidden); },
@@ -314,47 +308,54 @@ std::string realSceneSection(const Settings& settings, const RealSceneStudyOptio
                          return std::all_of(d.reacquired_after.begin(), d.reacquired_after.end(),
                                             [](int a) { return a >= 0 && a <= 3; });
                        }});
-    md += table(rows, study, missed) + "\n";
-    md += missedLine(missed);
+    v["real.videos_table"] = table(rows, study, missed);
+    v["real.videos_verdict"] = verdict(missed);
+  } else {
+    v["real.videos_table"] = "No videos in this run (--videos 0).";
+    v["real.videos_verdict"] = "";
   }
-  return md;
 }
 
-std::string webcamSection(const Settings& settings, const std::string& config, const RealSceneStudyOptions& o,
-                          const RealSceneStudy& study) {
+void measureWebcamSet(const Settings& settings, const std::string& config, const RealSceneStudyOptions& o,
+                      const RealSceneStudy& study, MeasuredValues& v) {
   const CameraModel& cam = settings.camera();
-  std::string md = "## The webcam set: occluders, glare, dim light and a wide lens\n\n";
-  md += format(
-      "%d stills and %d negatives, %.0f s. `imagepro-cli render --scene real --webcam --config %s --frames %d "
-      "--negatives %d --seed %d` writes the same frames. The real-scene stills above (the same ranges of distance, "
-      "tilt, light, blur, motion blur, noise and JPEG, over the same photographs) seen through a webcam's wide lens: "
-      "%dx%d, focal length %.0f px, principal point (%.1f, %.1f), k1 = %.3g px^-2, k2 = %.3g px^-4, p1 = %.3g, p2 = "
-      "%.3g px^-1 (the settings file `%s`), and touched by the rig: a flat occluder 10-25 mm wide across the rim on "
-      "%.0f %% of the stills (tape across the disk or a clamp reaching in, dark or grey, clear of the spots), a "
-      "saturating glare 4-12 mm across on the paper on %.0f %%, a dim room (paper at grey 70-120) on %.0f %%. The "
-      "ArUco marker is drawn in the target's place with the same occluder and glare in the same places of its plane. "
-      "The thesis's Taylor inverse of this lens errs by up to %.3f px inside the frame%s.\n\n",
-      o.stills, o.negatives, study.seconds, config.c_str(), o.stills, o.negatives, static_cast<int>(o.seed), cam.width,
-      cam.height, cam.fu(), cam.u0(), cam.v0(), cam.distortion.k1, cam.distortion.k2, cam.distortion.p1,
-      cam.distortion.p2, config.c_str(), 100.0 * o.rig.occluder_fraction, 100.0 * o.rig.glare_fraction,
-      100.0 * o.rig.dim_fraction, taylorInverseErrorPx(cam),
-      taylorInverseErrorPx(cam) > kTaylorInverseLimitPx
+  v["webcam.stills"] = format("%d", o.stills);
+  v["webcam.negatives"] = format("%d", o.negatives);
+  v["webcam.seconds"] = format("%.0f", study.seconds);
+  v["webcam.command"] = format("`imagepro-cli render --scene real --webcam --config %s --frames %d --negatives %d "
+                               "--seed %d`",
+                               config.c_str(), o.stills, o.negatives, static_cast<int>(o.seed));
+  v["webcam.image_size"] = format("%dx%d", cam.width, cam.height);
+  v["webcam.focal_px"] = format("%.0f", cam.fu());
+  v["webcam.principal_point_px"] = format("%.1f, %.1f", cam.u0(), cam.v0());
+  v["webcam.k1"] = format("%.3g", cam.distortion.k1);
+  v["webcam.k2"] = format("%.3g", cam.distortion.k2);
+  v["webcam.p1"] = format("%.3g", cam.distortion.p1);
+  v["webcam.p2"] = format("%.3g", cam.distortion.p2);
+  v["webcam.config"] = "`" + config + "`";
+  v["webcam.occluder_percent"] = format("%.0f", 100.0 * o.rig.occluder_fraction);
+  v["webcam.glare_percent"] = format("%.0f", 100.0 * o.rig.glare_fraction);
+  v["webcam.dim_percent"] = format("%.0f", 100.0 * o.rig.dim_fraction);
+  const double taylor = taylorInverseErrorPx(cam);
+  v["webcam.taylor_error_px"] = format("%.3f", taylor);
+  v["webcam.exact_inverse"] =
+      taylor > kTaylorInverseLimitPx
           ? format(", over the %.2f px limit, so the exact inverse is used without being asked", kTaylorInverseLimitPx)
-                .c_str()
-          : "");
+          : "";
+
   std::vector<std::string> missed;
   std::vector<Row> rows = stillRows();
   rows[1].goal = ">= 95 %";
   rows[1].met = [](const DetectorTally& d) { return d.stills.correct >= 0.95 * d.stills.frames; };
-  md += table(rows, study, missed) + "\n";
-  md += missedLine(missed);
-  md += "### The target's stills by what the rig did to them\n\n"
-        "| effects | stills | correct pose | off by more than 5 deg | rotation error, median | statuses without a "
-        "pose |\n| --- | ---: | ---: | ---: | ---: | --- |\n";
+  v["webcam.stills_table"] = table(rows, study, missed);
+  v["webcam.verdict"] = verdict(missed);
+  std::string effects =
+      "| effects | stills | correct pose | off by more than 5 deg | rotation error, median | statuses without a "
+      "pose |\n| --- | ---: | ---: | ---: | ---: | --- |\n";
   for (const auto& [name, t] : study.target.by_effect)
-    md += format("| %s | %d | %s | %d | %s | %s |\n", name.c_str(), t.frames, share(t.correct, t.frames).c_str(),
-                 t.wrong, figure(quantile(t.rotation_deg, 0.5), "deg").c_str(), statuses(t.misses).c_str());
-  return md + "\n";
+    effects += format("| %s | %d | %s | %d | %s | %s |\n", name.c_str(), t.frames, share(t.correct, t.frames).c_str(),
+                      t.wrong, figure(quantile(t.rotation_deg, 0.5), "deg").c_str(), statuses(t.misses).c_str());
+  v["webcam.by_effect"] = effects;
 }
 
 }  // namespace imagepro::studies

@@ -4,7 +4,8 @@
 // and videos, and the reference ArUco marker drawn in its place in the same frames
 // (marker_scene.h). Each still goes through the default pipeline alone (tracking reset),
 // each video is tracked frame to frame; the marker is found in every frame alone by
-// OpenCV's detector with its default, adaptive thresholds.
+// OpenCV's detector with its default, adaptive thresholds. The prose around the measured
+// values lives in docs/accuracy.md.
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -15,6 +16,7 @@
 #include "core/common/status.h"
 #include "core/settings/settings.h"
 #include "core/source/rig_effects.h"
+#include "studies/measured_doc.h"
 
 namespace imagepro::studies {
 
@@ -65,15 +67,16 @@ struct RealSceneStudy {
 bool runRealSceneStudy(const Settings& settings, const RealSceneStudyOptions& options, RealSceneStudy& out,
                        std::string& error);
 
-// The report's section: how the frames were made, then the stills' and the videos' tables,
-// target and marker side by side against the goals.
-std::string realSceneSection(const Settings& settings, const RealSceneStudyOptions& options,
-                             const RealSceneStudy& study);
+// The values of docs/accuracy.md's real.* places: how the frames were made, then the stills'
+// and the videos' tables, target and marker side by side against the goals, each with its
+// verdict.
+void measureRealScenes(const Settings& settings, const RealSceneStudyOptions& options, const RealSceneStudy& study,
+                       MeasuredValues& values);
 
-// The webcam set's section: stills and negatives with options.rig's effects seen
-// through `settings`' camera (a wide lens), target and marker side by side, and the stills'
-// misses by effect. `config` names the settings file the command was given.
-std::string webcamSection(const Settings& settings, const std::string& config, const RealSceneStudyOptions& options,
-                          const RealSceneStudy& study);
+// The values of the webcam set's places (webcam.*): stills and negatives with options.rig's
+// effects seen through `settings`' camera (a wide lens), target and marker side by side, and
+// the stills' misses by effect. `config` names the settings file the command was given.
+void measureWebcamSet(const Settings& settings, const std::string& config, const RealSceneStudyOptions& options,
+                      const RealSceneStudy& study, MeasuredValues& values);
 
 }  // namespace imagepro::studies

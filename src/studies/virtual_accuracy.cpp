@@ -3,6 +3,7 @@
 // clutter, with and without the thesis camera's lens distortion, detects and reconstructs
 // the target in every contour mode, and compares with the truth; at the very same poses and
 // image effects an ArUco marker of the disk's width is found and solved by OpenCV (IPPE).
+// Only the figures, tables and lists are made here; the prose around them is docs/accuracy.md's.
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -262,25 +263,22 @@ CameraModel scaledThesisCamera(double scale) {
   return cam;
 }
 
-std::string distortionSection() {
+// The Taylor inverse's error for the thesis camera scaled up, and the largest scale within the
+// thesis's bound for exaggerated distortion.
+void measureDistortion(MeasuredValues& v) {
   constexpr double kThesisExaggeratedBoundPx = 6.0;
-  std::string md;
-  md += "## Lens distortion correction (thesis 4.5)\n\n";
-  md += "Every pixel centre of the 640x480 image taken as a distorted position; its true undistorted\n"
-        "position is the exact inverse (Newton's method, checked by distorting it again). Error of the\n"
-        "Taylor inverse of eqs. 4.18-4.19 (one evaluation, no iteration):\n\n";
-  md += "| distortion | largest displacement (px) | Taylor max error (px) | Taylor RMS error (px) | exact inverse residual (px) |\n";
-  md += "| --- | ---: | ---: | ---: | ---: |\n";
+  std::string table =
+      "| distortion | largest displacement (px) | Taylor max error (px) | Taylor RMS error (px) | exact inverse "
+      "residual (px) |\n| --- | ---: | ---: | ---: | ---: |\n";
   double thesisError = NAN;
   for (double scale : {1.0, 2.0, 2.5, 3.0}) {
     const CameraModel cam = scaledThesisCamera(scale);
     const UndistortionError e = measureTaylorUndistortionError(cam);
     if (scale == 1.0) thesisError = e.max_px;
-    md += format("| thesis camera x %.1f | %.1f | %.3f | %.4f | %.1e |\n", scale, e.largest_displacement_px, e.max_px,
-                 e.rms_px, e.max_residual_exact_px);
+    table += format("| thesis camera x %.1f | %.1f | %.3f | %.4f | %.1e |\n", scale, e.largest_displacement_px,
+                    e.max_px, e.rms_px, e.max_residual_exact_px);
   }
-  // The largest multiple of the thesis camera's coefficients whose Taylor error stays within
-  // the thesis's bound for exaggerated distortion (bisection; the error grows with the scale).
+  // Bisection: the error grows with the scale.
   double within = 1.0, beyond = 3.0;
   if (measureTaylorUndistortionError(scaledThesisCamera(beyond)).max_px > kThesisExaggeratedBoundPx) {
     for (int i = 0; i < 8; ++i) {
@@ -292,22 +290,38 @@ std::string distortionSection() {
     within = beyond;
   }
   const UndistortionError limit = measureTaylorUndistortionError(scaledThesisCamera(within));
-  md += format(
-      "\nThe thesis reports at most 1 px for its camera and at most %.0f px for exaggerated composite\n"
-      "distortion. The Taylor inverse is exact to second order, so its error grows with at least the\n"
-      "third power of the distortion: %.3f px for the thesis camera. The %.0f px bound holds for the thesis\n"
-      "camera's four coefficients scaled together by up to %.2f (%.0f px of displacement at the image's\n"
-      "corners, Taylor error %.2f px) and is exceeded beyond that; from about 3.5 times the model folds\n"
-      "inside the image and has no inverse there at all. The reconstruction uses the Taylor inverse by\n"
-      "default; the setting `exact_undistortion` selects the Newton inverse for stronger lenses.\n\n",
-      kThesisExaggeratedBoundPx, thesisError, kThesisExaggeratedBoundPx, within, limit.largest_displacement_px,
-      limit.max_px);
-  return md;
+  v["virtual.taylor_table"] = table;
+  v["virtual.taylor.bound_px"] = format("%.0f", kThesisExaggeratedBoundPx);
+  v["virtual.taylor.thesis_error_px"] = format("%.3f", thesisError);
+  v["virtual.taylor.scale_within"] = format("%.2f", within);
+  v["virtual.taylor.displacement_px"] = format("%.0f", limit.largest_displacement_px);
+  v["virtual.taylor.error_px"] = format("%.2f", limit.max_px);
+}
+
+// A condition's detection count and its two tables (all methods; by tilt band).
+void measureCondition(const Condition& c, const std::string& prefix, MeasuredValues& v) {
+  v[prefix + "detected"] = format("%d", c.detected);
+  v[prefix + "detected_percent"] = format("%.1f", 100.0 * c.detected / std::max(c.frames, 1));
+  std::string methods =
+      "| method | frames | found | rotation median (deg) | rotation p95 (deg) | position median (%) | position p95 (%) "
+      "|\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+  for (std::size_t m = 0; m < c.methods.size(); ++m)
+    methods += "| " + c.methods[m].name + " | " + summaryCells(summarise(c.outcomes[m], 0, 1e9)) + " |\n";
+  v[prefix + "methods"] = methods;
+  std::string bands =
+      "| tilt (deg) | method | frames | found | rotation median (deg) | rotation p95 (deg) | position median (%) | "
+      "position p95 (%) |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+  for (std::size_t b = 0; b + 1 < kTiltBands.size(); ++b)
+    for (std::size_t m = 0; m < c.methods.size(); ++m)
+      bands += format("| %.0f-%.0f | ", kTiltBands[b], kTiltBands[b + 1]) + c.methods[m].name + " | " +
+               summaryCells(summarise(c.outcomes[m], kTiltBands[b], kTiltBands[b + 1])) + " |\n";
+  v[prefix + "by_tilt"] = bands;
 }
 
 }  // namespace
 
-std::string virtualAccuracyReport(const Settings& settings, int frames, std::uint64_t seed, double& seconds) {
+void measureVirtualAccuracy(const Settings& settings, int frames, std::uint64_t seed, MeasuredValues& v,
+                            double& seconds) {
   const auto start = std::chrono::steady_clock::now();
 
   auto methods = [](bool withUncorrected) {
@@ -332,32 +346,25 @@ std::string virtualAccuracyReport(const Settings& settings, int frames, std::uin
   }
   seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  const Settings defaults;
-  std::string md = format(
-      "Virtual grey 640x480 frames of the target (disk R = %.0f mm, spots r0 = %.0f mm at rf = %.0f mm, on a "
-      "%.0f mm black card), camera d0 = %.1f mm, pixel %.3f mm. Per frame, at random: distance of the target's "
-      "centre %.0f-%.0f mm, tilt (angle between its normal and the line of sight) 0-%.0f deg in any direction, "
-      "in-plane rotation any, position anywhere with the whole card in the image; noise sigma 0-%.0f grey levels, "
-      "blur sigma 0-%.1f px, illumination gradient up to +-%.0f %% across the image, %d clutter bars and "
-      "rectangles; every pixel an edge crosses averaged over %d x %d samples (its coverage). %d frames with and "
-      "%d without lens distortion.\n\n",
-      settings.target.radius_mm, settings.target.spot_radius_mm, settings.target.spot_offset_mm,
-      settings.virtual_scene.card_size_mm, settings.camera().image_plane_distance_mm, settings.camera().pixel_size_mm[0],
-      kMinDistanceMm, kMaxDistanceMm, kMaxTiltDeg, kMaxNoiseSigma, kMaxBlurSigmaPx, 100 * kMaxGradient, kClutter,
-      settings.virtual_scene.supersampling, settings.virtual_scene.supersampling, frames, frames);
-  md += "Each frame goes through the pipeline's detection (whole frame, no tracking, the default settings), then "
-        "through the reconstruction once per contour mode. Rotation error: the angle of R_true^-1 R_est; "
-        "position error: |T_est - T_true| in % of the distance. Medians and 95th percentiles are over the frames "
-        "a method solved; *found* is the share of frames it solved.\n\n"
-        "The reference: an ArUco marker (OpenCV aruco, DICT_4X4_50, id 0) whose black square is as wide as the "
-        "disk (100 mm), on a white card of the target card's size, drawn at the very same pose through the same "
-        "camera, distortion, blur, noise, gradient and clutter; detected by `cv::aruco::detectMarkers` with "
-        "sub-pixel corner refinement, its corners corrected for the distortion with the exact (Newton) inverse "
-        "(the target's features get the Taylor inverse by default; for this camera the two differ by at most "
-        "the Taylor error in the last section, a few hundredths of a pixel), solved by `cv::solvePnP` with "
-        "`SOLVEPNP_IPPE_SQUARE`.\n\n";
+
+  // How the frames were made.
+  v["virtual.disk_radius_mm"] = format("%.0f", settings.target.radius_mm);
+  v["virtual.spot_radius_mm"] = format("%.0f", settings.target.spot_radius_mm);
+  v["virtual.spot_offset_mm"] = format("%.0f", settings.target.spot_offset_mm);
+  v["virtual.card_mm"] = format("%.0f", settings.virtual_scene.card_size_mm);
+  v["virtual.d0_mm"] = format("%.1f", settings.camera().image_plane_distance_mm);
+  v["virtual.pixel_mm"] = format("%.3f", settings.camera().pixel_size_mm[0]);
+  v["virtual.distance_mm"] = format("%.0f-%.0f", kMinDistanceMm, kMaxDistanceMm);
+  v["virtual.max_tilt_deg"] = format("%.0f", kMaxTiltDeg);
+  v["virtual.max_noise"] = format("%.0f", kMaxNoiseSigma);
+  v["virtual.max_blur_px"] = format("%.1f", kMaxBlurSigmaPx);
+  v["virtual.max_gradient_percent"] = format("%.0f", 100 * kMaxGradient);
+  v["virtual.clutter"] = format("%d", kClutter);
+  v["virtual.supersampling"] = format("%d", settings.virtual_scene.supersampling);
+  v["virtual.frames"] = format("%d", frames);
 
   // Goals, on the default contour mode with the distortion corrected.
+  const Settings defaults;
   const Condition& main = conditions[1];
   const ReconstructionOptions& defaultOptions = defaults.pipeline.reconstruction;
   auto isDefault = [&](const Method& m) {
@@ -369,25 +376,24 @@ std::string virtualAccuracyReport(const Settings& settings, int frames, std::uin
     if (isDefault(main.methods[m])) defaultIndex = m;
   const Summary ours = summarise(main.outcomes[defaultIndex], 0, 1e9);
   const Summary aruco = summarise(main.outcomes[markerIndex], 0, 1e9);
-  md += "## Goals, thesis camera's distortion corrected, default contour mode (" +
-        main.methods[defaultIndex].name + ")\n\n";
-  md += "| measure | goal | target | ArUco |\n| --- | --- | ---: | ---: |\n";
-  md += format("| detection, whole target visible | 100 %% | %.1f %% | %.1f %% |\n", 100.0 * main.detected / main.frames,
-               aruco.n ? 100.0 * aruco.found / aruco.n : 0.0);
-  md += format("| rotation error, median | <= 0.1 deg | %.3f deg | %.3f deg |\n", ours.rotMedian, aruco.rotMedian);
-  md += format("| rotation error, 95th percentile | <= 0.5 deg | %.3f deg | %.3f deg |\n", ours.rotP95, aruco.rotP95);
-  md += format("| position error, median | <= 0.1 %% of distance | %.3f %% | %.3f %% |\n", ours.posMedian,
-               aruco.posMedian);
-  md += format("| position error, 95th percentile | (no worse than ArUco) | %.3f %% | %.3f %% |\n\n", ours.posP95,
-               aruco.posP95);
+  v["virtual.default_mode"] = main.methods[defaultIndex].name;
+  std::string goals = "| measure | goal | target | ArUco |\n| --- | --- | ---: | ---: |\n";
+  goals += format("| detection, whole target visible | 100 %% | %.1f %% | %.1f %% |\n",
+                  100.0 * main.detected / main.frames, aruco.n ? 100.0 * aruco.found / aruco.n : 0.0);
+  goals += format("| rotation error, median | <= 0.1 deg | %.3f deg | %.3f deg |\n", ours.rotMedian, aruco.rotMedian);
+  goals += format("| rotation error, 95th percentile | <= 0.5 deg | %.3f deg | %.3f deg |\n", ours.rotP95, aruco.rotP95);
+  goals += format("| position error, median | <= 0.1 %% of distance | %.3f %% | %.3f %% |\n", ours.posMedian,
+                  aruco.posMedian);
+  goals += format("| position error, 95th percentile | (no worse than ArUco) | %.3f %% | %.3f %% |\n", ours.posP95,
+                  aruco.posP95);
+  v["virtual.goals_table"] = goals;
 
   // The same goals per tilt band: the aggregate hides the band where they are missed.
-  md += "The same goals per tilt band, default contour mode, with and without the lens distortion "
-        "(*missed* marks a figure over its goal):\n\n";
-  md += "| tilt (deg) | distortion | rotation median (goal <= 0.1 deg) | rotation p95 (goal <= 0.5 deg) | position "
-        "median (goal <= 0.1 %) |\n| --- | --- | ---: | ---: | ---: |\n";
-  auto mark = [](double v, double goal) {
-    return std::isnan(v) ? std::string("-") : format(v <= goal ? "%.3f" : "%.3f (missed)", v);
+  std::string bands =
+      "| tilt (deg) | distortion | rotation median (goal <= 0.1 deg) | rotation p95 (goal <= 0.5 deg) | position "
+      "median (goal <= 0.1 %) |\n| --- | --- | ---: | ---: | ---: |\n";
+  auto mark = [](double x, double goal) {
+    return std::isnan(x) ? std::string("-") : format(x <= goal ? "%.3f" : "%.3f (missed)", x);
   };
   std::string missed;
   for (std::size_t b = 0; b + 1 < kTiltBands.size(); ++b) {
@@ -398,9 +404,10 @@ std::string virtualAccuracyReport(const Settings& settings, int frames, std::uin
       for (std::size_t m = 0; m < c.methods.size(); ++m)
         if (isDefault(c.methods[m])) index = m;
       const Summary band = summarise(c.outcomes[index], kTiltBands[b], kTiltBands[b + 1]);
-      md += format("| %.0f-%.0f | %s | ", kTiltBands[b], kTiltBands[b + 1],
-                   k == 0 ? "none" : "thesis camera, corrected") +
-            mark(band.rotMedian, 0.1) + " | " + mark(band.rotP95, 0.5) + " | " + mark(band.posMedian, 0.1) + " |\n";
+      bands += format("| %.0f-%.0f | %s | ", kTiltBands[b], kTiltBands[b + 1],
+                      k == 0 ? "none" : "thesis camera, corrected") +
+               mark(band.rotMedian, 0.1) + " | " + mark(band.rotP95, 0.5) + " | " + mark(band.posMedian, 0.1) +
+               " |\n";
       if (band.rotMedian > 0.1 || band.rotP95 > 0.5 || band.posMedian > 0.1)
         bandMissed += format("%s%s: rotation median %.3f deg, p95 %.3f deg, position median %.3f %%",
                              bandMissed.empty() ? "" : "; ", k == 0 ? "without distortion" : "with it",
@@ -410,67 +417,21 @@ std::string virtualAccuracyReport(const Settings& settings, int frames, std::uin
       missed += format("%s%.0f-%.0f deg (", missed.empty() ? "" : "; ", kTiltBands[b], kTiltBands[b + 1]) +
                 bandMissed + ")";
   }
-  if (missed.empty()) {
-    md += "\nEvery tilt band meets the goals.\n\n";
-  } else {
-    md += "\n**Not met in every tilt band.** The aggregate figures above meet the goals; these bands do not: " +
-          missed +
-          ". Near fronto-parallel the plane's normal is ill-conditioned: the two circles that cut the rim's cone "
-          "merge, and the normal depends on the square root of the rim's tiny ellipticity, so a hundredth of a "
-          "pixel in the fitted axes tilts it by about a degree. Every method that takes the normal from a "
-          "circle's image shares this, and the marker's IPPE has the same two-fold ambiguity there. Weighing in "
-          "the centre spot's polar line (the default; the rows *sub-pixel, rim normal only* leave it out) "
-          "narrows the tail there, as the last table but one shows; the band's median is set by its tilts of "
-          "5-15 deg, where the rim's normal is already the better of the two.\n\n";
-  }
+  v["virtual.goals_by_tilt"] = bands;
+  // The doc's reading of the tables says why a band near head-on can miss.
+  v["virtual.tilt_verdict"] = missed.empty() ? "Every tilt band meets the goals."
+                                             : "**Not met in every tilt band.** The aggregate figures above meet the "
+                                               "goals; these bands do not: " +
+                                                   missed + ".";
 
-  md += "Reading the tables (the methods are described in docs/reconstruction.md):\n\n"
-        "* The ORG contour modes take pixel centres, on average inside the rim, so the ellipse is too small and "
-        "the distance too large; 8 points ORG also stops at a spot or blemish on its rays.\n"
-        "* Full path MOD puts its points on the binary crossing of the re-threshold. The minimum-error threshold "
-        "of the crop is rarely the edge's mid-level once the edge is blurred or anti-aliased, so the rim moves by "
-        "a fraction of a pixel: a position error of a few per cent of the distance. The sub-pixel mode finds the "
-        "edge in the grey levels and does not depend on the threshold.\n"
-        "* Seen head-on, the two planes that cut the rim's cone in a circle merge, and the normal depends on "
-        "the square root of the rim's tiny ellipticity: in the 0-15 deg band the rotation error's tail is "
-        "larger for every method, the marker's included (IPPE's two solutions merge there too). The centre "
-        "spot's polar line depends on the spot's image linearly and does not degrade head-on; weighed in, it "
-        "takes over there (*sub-pixel* against *sub-pixel, rim normal only*).\n"
-        "* Without the distortion correction, a target away from the image centre is seen through a lens "
-        "that bends its rim: the rotation errors grow by an order of magnitude.\n\n";
+  measureCondition(conditions[0], "virtual.no_lens.", v);
+  measureCondition(conditions[1], "virtual.thesis_lens.", v);
 
-  for (const Condition& c : conditions) {
-    md += "## " + std::string(1, static_cast<char>(std::toupper(c.name[0]))) + c.name.substr(1) + "\n\n";
-    md += format("Target detected in %d of %d frames (%.1f %%).\n\n", c.detected, c.frames,
-                 100.0 * c.detected / std::max(c.frames, 1));
-    md += "| method | frames | found | rotation median (deg) | rotation p95 (deg) | position median (%) | position p95 (%) |\n";
-    md += "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
-    for (std::size_t m = 0; m < c.methods.size(); ++m)
-      md += "| " + c.methods[m].name + " | " + summaryCells(summarise(c.outcomes[m], 0, 1e9)) + " |\n";
-    md += "\nBy tilt band:\n\n";
-    md += "| tilt (deg) | method | frames | found | rotation median (deg) | rotation p95 (deg) | position median (%) | position p95 (%) |\n";
-    md += "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
-    for (std::size_t b = 0; b + 1 < kTiltBands.size(); ++b)
-      for (std::size_t m = 0; m < c.methods.size(); ++m)
-        md += format("| %.0f-%.0f | ", kTiltBands[b], kTiltBands[b + 1]) + c.methods[m].name + " | " +
-              summaryCells(summarise(c.outcomes[m], kTiltBands[b], kTiltBands[b + 1])) + " |\n";
-    md += "\n";
-  }
-
-  md += "## The plane normal: the cone's eigen-structure, the centre spot's polar line, and both weighed\n\n";
-  md += "Same frames (thesis camera's distortion, corrected), same sub-pixel contour and conic: the normal's angle "
-        "error from the eigen-decomposition of the cone (the rim alone), from the polar line "
-        "of the centre spot's image with respect to the conic (the plane's vanishing line). The polar line is "
-        "exact only for the image of the disk's centre; the spot's centroid lies off it by perspective. It is "
-        "therefore given the centroid with that bias removed (computed from the spot's image conic at the "
-        "estimated pose, as the reconstruction does for the offset spot), so that the comparison measures the "
-        "sensitivity to noise alone; the last column is the raw centroid, bias included. *Weighed* is the "
-        "default (`centre_spot_normal`): the two normals averaged, each weighed by the inverse square of its "
-        "turn per pixel of error (docs/reconstruction.md).\n\n";
-  md += "| tilt (deg) | frames | eigen median (deg) | eigen p95 (deg) | polar line median (deg) | polar line p95 (deg) "
-        "| polar / eigen, median | polar / eigen, p95 | polar line, raw centroid, median (deg) | weighed median (deg) "
-        "| weighed p95 (deg) |\n";
-  md += "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+  // The plane normal: eigen-structure, polar line and both weighed, by tilt band.
+  std::string normals =
+      "| tilt (deg) | frames | eigen median (deg) | eigen p95 (deg) | polar line median (deg) | polar line p95 (deg) "
+      "| polar / eigen, median | polar / eigen, p95 | polar line, raw centroid, median (deg) | weighed median (deg) "
+      "| weighed p95 (deg) |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
   std::string ratios;
   for (std::size_t b = 0; b + 1 < kTiltBands.size(); ++b) {
     std::vector<double> e, p, raw, w;
@@ -483,17 +444,17 @@ std::string virtualAccuracyReport(const Settings& settings, int frames, std::uin
       }
     const double medianRatio = quantile(p, 0.5) / quantile(e, 0.5);
     const double p95Ratio = quantile(p, 0.95) / quantile(e, 0.95);
-    md += format("| %.0f-%.0f | %zu | ", kTiltBands[b], kTiltBands[b + 1], e.size()) + cell(quantile(e, 0.5)) +
-          " | " + cell(quantile(e, 0.95)) + " | " + cell(quantile(p, 0.5)) + " | " + cell(quantile(p, 0.95)) + " | " +
-          cell(medianRatio, "%.1fx") + " | " + cell(p95Ratio, "%.1fx") + " | " + cell(quantile(raw, 0.5)) + " | " +
-          cell(quantile(w, 0.5)) + " | " + cell(quantile(w, 0.95)) + " |\n";
+    normals += format("| %.0f-%.0f | %zu | ", kTiltBands[b], kTiltBands[b + 1], e.size()) + cell(quantile(e, 0.5)) +
+               " | " + cell(quantile(e, 0.95)) + " | " + cell(quantile(p, 0.5)) + " | " + cell(quantile(p, 0.95)) +
+               " | " + cell(medianRatio, "%.1fx") + " | " + cell(p95Ratio, "%.1fx") + " | " +
+               cell(quantile(raw, 0.5)) + " | " + cell(quantile(w, 0.5)) + " | " + cell(quantile(w, 0.95)) + " |\n";
     if (!e.empty())
       ratios += format("%s%.0f-%.0f deg: %.1fx on the median, %.1fx on the 95th percentile",
                        ratios.empty() ? "" : "; ", kTiltBands[b], kTiltBands[b + 1], medianRatio, p95Ratio);
   }
-  md += "\nPolar line against eigen-structure, by band: " + ratios + ".\n\n";
-  md += distortionSection();
-  return md;
+  v["virtual.normal_table"] = normals;
+  v["virtual.normal_ratios"] = ratios;
+  measureDistortion(v);
 }
 
 }  // namespace imagepro::studies

@@ -93,10 +93,17 @@ TEST(Studies, EllipseLibraryPlotsTheLibraryPerImage) {
 // chart each, listed in a table whose largest errors are those of a working tracker.
 TEST(Studies, TrackStudyWritesTheTrackingRuns) {
   const fs::path dir = freshDir("studies_track");
-  const CliRun r = studies("track-study --frames 60 --out " + (dir / "tracking.md").string());
+  const std::string doc = std::string(IMAGEPRO_SOURCE_DIR) + "/docs/tracking.md";
+  const CliRun r = studies("track-study --frames 60 --template " + doc + " --out " + (dir / "tracking.md").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::string md, e;
   ASSERT_TRUE(readWholeFile((dir / "tracking.md").string(), md, e)) << e;
+  // The prose is the doc's; the run's own figures are filled in.
+  EXPECT_NE(md.find("The default <!--m:default.min_r-->0.9<!--/m--> follows the thesis's rule"), std::string::npos);
+  EXPECT_NE(md.find("--frames 60 --out " + (dir / "tracking.md").string()), std::string::npos);
+  const CliRun missing = studies("track-study --frames 60 --out " + (dir / "none" / "tracking.md").string());
+  EXPECT_EQ(missing.exit_code, 1) << missing.err;
+  EXPECT_NE(missing.err.find("--template"), std::string::npos) << missing.err;
   const std::size_t section = md.find("## The tracking runs (thesis figs. 3.7-3.12)");
   ASSERT_NE(section, std::string::npos);
   std::vector<std::string> rows;
@@ -163,15 +170,21 @@ TEST(Studies, DistortionFiguresTableAndPlots) {
   EXPECT_EQ(table.out, r.out);
 }
 
+// The repository's hand-written report, whose measured places the accuracy study fills.
+std::string accuracyTemplate() { return std::string(IMAGEPRO_SOURCE_DIR) + "/docs/accuracy.md"; }
+
 // The accuracy study's virtual part end to end on the smallest run: a complete report
-// that names the command regenerating it (the real scenes: real_scene_accuracy_test.cpp).
+// that names the command regenerating it, the real scenes' text left as the template has it
+// (they are measured in real_scene_accuracy_test.cpp).
 TEST(Studies, AccuracySmokeRunWritesItsReport) {
   const fs::path dir = freshDir("studies_accuracy");
   const fs::path out = dir / "accuracy.md";
-  const CliRun r = studies("accuracy --scene virtual --frames 2 --seed 3 --out " + out.string());
+  const CliRun r =
+      studies("accuracy --scene virtual --frames 2 --seed 3 --template " + accuracyTemplate() + " --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  std::string md, e;
+  std::string md, doc, e;
   ASSERT_TRUE(readWholeFile(out.string(), md, e)) << e;
+  ASSERT_TRUE(readWholeFile(accuracyTemplate(), doc, e)) << e;
   EXPECT_EQ(md.rfind("# Accuracy\n", 0), 0u);
   for (const char* part :
        {"`imagepro-studies accuracy --scene virtual --frames 2 --seed 3`", "## Goals, thesis camera", "| detection, whole target visible |",
@@ -179,11 +192,42 @@ TEST(Studies, AccuracySmokeRunWritesItsReport) {
         "| sub-pixel | 2 |", "| ArUco 4x4 (IPPE) | 2 |", "## The plane normal", "## Lens distortion correction",
         "| thesis camera x 1.0 |"})
     EXPECT_NE(md.find(part), std::string::npos) << part;
-  EXPECT_EQ(md.find("nan"), std::string::npos);
-  EXPECT_EQ(md.find("## Real scenes"), std::string::npos);
+  const std::size_t real = md.find("## Real scenes"), templateReal = doc.find("## Real scenes");
+  ASSERT_NE(real, std::string::npos);
+  ASSERT_NE(templateReal, std::string::npos);
+  EXPECT_EQ(md.substr(0, real).find("nan"), std::string::npos);
+  EXPECT_EQ(md.substr(real), doc.substr(templateReal));
   const CliRun bad = studies("accuracy --frames 0");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("imagepro-studies accuracy: "), std::string::npos) << bad.err;
+}
+
+// A template that disagrees with the study is refused, naming the value, and --out is not
+// written: a value without a place, or a place of the part run that the study does not know.
+TEST(Studies, AccuracyRefusesATemplateWithoutAPlaceForAValue) {
+  const fs::path dir = freshDir("studies_accuracy_template");
+  const std::string doc = test::readText(accuracyTemplate());
+  const std::string open = "<!--m:virtual.normal_ratios-->";
+  const std::size_t at = doc.find(open);
+  ASSERT_NE(at, std::string::npos);
+  std::string lacking = doc;
+  lacking.erase(at, open.size());
+  lacking.erase(lacking.find("<!--/m-->", at), std::string("<!--/m-->").size());
+  test::writeText(dir / "lacking.md", lacking);
+  const fs::path out = dir / "accuracy.md";
+  const CliRun r = studies("accuracy --scene virtual --frames 1 --template " + (dir / "lacking.md").string() +
+                           " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("'virtual.normal_ratios'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("lacking.md"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+
+  test::writeText(dir / "extra.md", doc + "\nAnd <!--m:virtual.unknown-->1<!--/m-->.\n");
+  const CliRun extra = studies("accuracy --scene virtual --frames 1 --template " + (dir / "extra.md").string() +
+                               " --out " + out.string());
+  EXPECT_EQ(extra.exit_code, 1);
+  EXPECT_NE(extra.err.find("no value for 'virtual.unknown'"), std::string::npos) << extra.err;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 // The peers on the same frames as the engine: every method finds the target in every
