@@ -409,8 +409,11 @@ Status robustTarget(const EllipseOptions& o, const Paths& paths, std::size_t i, 
   return fitAccepted(o, fit, trace, o.robust_min_traced_fraction) ? Status::Ok : Status::NotAnEllipse;
 }
 
-// Pairs of dark paths that may be the spots, tried at most, the likeliest first.
-constexpr int kMaxSpotPairs = 64;
+// Pairs of dark paths that may be the spots, tried at most, the likeliest first. A printed
+// photograph's text or foliage gives a thousand pairs, and fragments that an occluder cuts
+// from the card round the spots can rank the target's pair past the hundredth; each try
+// costs only the gathering of edge pixels unless its seeds lie on a smooth outline.
+constexpr int kMaxSpotPairs = 128;
 // Other dark paths of the spots' size within this many times the spots' distance of their
 // midpoint count against a pair: inside the disk, clear of the rim.
 constexpr double kSpotPairRoundness = 1.2;
