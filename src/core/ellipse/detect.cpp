@@ -189,6 +189,12 @@ bool findSpots(const EllipseOptions& o, const TargetGeometry& g, const Ellipse& 
   return std::isfinite(best) && second > best + kClearlyBestPair;
 }
 
+void holdSpots(TargetDetection& d, const std::array<std::size_t, 2>& spots, const EllipseWorkspace& ws) {
+  d.spot_paths = spots;
+  d.spot_boxes = {ws.paths[spots[0]].bbox, ws.paths[spots[1]].bbox};
+  d.spots_found = true;
+}
+
 // Is dark path j one of the spots of a target found already?
 bool claimed(std::size_t j, const std::vector<TargetDetection>& found) {
   return std::any_of(found.begin(), found.end(), [&](const TargetDetection& d) {
@@ -226,16 +232,34 @@ bool holdsDarkPath(const Ellipse& e, std::size_t self, const EllipseWorkspace& w
   return false;
 }
 
+// A pair of spots that proposes a rim (targetsFromSpots): the consensus takes only
+// ellipses on which the pair sits where the target's spots sit, as findSpots will ask. An
+// occluder's edge pulls a fit that is free of them off the rim (the spots then end up
+// beyond findSpots' tolerance), or to a needle along its two straight edges.
+struct RimAroundSpots {
+  std::array<Eigen::Vector2d, 2> spots;
+  double offset = 0.0;     // rf / R
+  double tolerance = 0.0;  // EllipseOptions::target_spot_tolerance
+};
+
+bool holdsSpotsInPlace(const Ellipse& e, const RimAroundSpots& around) {
+  const Eigen::Vector2d p = unitFrame(e, around.spots[0].x(), around.spots[0].y());
+  const Eigen::Vector2d q = unitFrame(e, around.spots[1].x(), around.spots[1].y());
+  return std::min(p.norm(), q.norm()) <= around.tolerance &&
+         std::abs((p - q).norm() - around.offset) <= around.tolerance;
+}
+
 // The consensus ellipse of a path: the six-point fit whose ellipse the path traces most,
 // refitted twice on its inliers (left in ws.inliers).
 Status consensusFit(const EllipseOptions& o, std::span<const EdgePixel> path, EllipseWorkspace& ws,
-                    EllipseFit& fit) {
+                    EllipseFit& fit, const RimAroundSpots* around = nullptr) {
   ++ws.consensus_fits;
   const std::size_t n = path.size();
   if (n < 6) return Status::TooFewPoints;
   ws.rng.seed(static_cast<std::mt19937::result_type>(n));  // reproducible per path
   std::uniform_int_distribution<std::size_t> pick(0, n - 1);
   const double inlier_px = o.trace_inlier_px;
+  const double flattest = std::cos(o.target_max_tilt_deg * M_PI / 180.0);
   // Candidates are scored on an evenly spread subset of the path. The stride is odd:
   // CN1 lists a contour breadth first, alternating between its two fronts, so an even
   // stride would score one side of the contour only.
@@ -257,6 +281,10 @@ Status consensusFit(const EllipseOptions& o, std::span<const EdgePixel> path, El
     ConicMoments m;
     for (std::size_t k : idx) m.add(path[k].x, path[k].y);
     if (!ok(fitEllipse(m, trial))) continue;
+    // No circle is seen flatter than the steepest tilt allows: seeds on an occluder's two
+    // straight edges fit a needle that their points trace whole.
+    if (trial.ellipse.b < flattest * trial.ellipse.a) continue;
+    if (around && !holdsSpotsInPlace(trial.ellipse, *around)) continue;
     // Score: how much of the candidate ellipse the path traces (an occluder's long
     // straight edges gather many inliers on a needle-thin ellipse but trace little of
     // it), then the inliers.
@@ -313,6 +341,8 @@ Status consensusFit(const EllipseOptions& o, std::span<const EdgePixel> path, El
     if (!ok(st)) return st;
     best = trial;
   }
+  // The refit may flatten a rounder sample's ellipse back into the needle.
+  if (best.ellipse.b < flattest * best.ellipse.a) return Status::NotAnEllipse;
   fit = best;
   return Status::Ok;
 }
@@ -436,8 +466,11 @@ constexpr double kRimBeyondSpots = 0.7;
 constexpr double kSpotsMinTraced = 0.6;
 // A rim traced this far from a pair of spots is taken without trying the other pairs.
 constexpr double kSpotsSureTraced = 0.9;
-// The spots' size within this factor of r0 / R times the rim's (findSpots allows 2.5).
+// The spots' size within this factor of r0 / R times the rim's (findSpots allows 2.5), or
+// down to kSpotsShrunk below it: a local threshold keeps only the core of a blurred spot on
+// dim paper (0.54 of its size on a webcam still at 2 m).
 constexpr double kSpotsSizeMatch = 1.6;
+constexpr double kSpotsShrunk = 2.2;
 
 // The pairs of dark paths that may be a target's spots (spotPair, neither a found target's),
 // into ws.pairs, the likeliest first: fewest other dark paths of their size round them (the
@@ -557,7 +590,9 @@ void targetsFromSpots(const EllipseOptions& o, const TargetGeometry& g, const Pa
     if (smooth < static_cast<int>(kSmoothSeeds * kSeedArcs)) continue;
     EllipseFit fit;
     EllipseTrace trace;
-    if (!ok(consensusFit(seeding, ws.seeds, ws, fit))) continue;
+    const RimAroundSpots around{{Eigen::Vector2d(p.cx, p.cy), Eigen::Vector2d(q.cx, q.cy)},
+                                g.spot_offset_mm / g.radius_mm, o.target_spot_tolerance};
+    if (!ok(consensusFit(seeding, ws.seeds, ws, fit, &around))) continue;
     // Every gathered pixel on the proposed rim, fitted twice.
     bool fitted = true;
     for (int round = 0; round < 2 && fitted; ++round) {
@@ -580,7 +615,7 @@ void targetsFromSpots(const EllipseOptions& o, const TargetGeometry& g, const Pa
     // photograph's blobs with arcs round them are of any size.
     const double expected = g.spot_radius_mm / g.radius_mm * std::sqrt(fit.ellipse.a * fit.ellipse.b);
     if (std::max(p.rms_radius, q.rms_radius) > kSpotsSizeMatch * expected ||
-        std::min(p.rms_radius, q.rms_radius) < expected / kSpotsSizeMatch)
+        std::min(p.rms_radius, q.rms_radius) < expected / kSpotsShrunk)
       continue;
     PathSummary s;
     s.fit = fit;
@@ -593,8 +628,7 @@ void targetsFromSpots(const EllipseOptions& o, const TargetGeometry& g, const Pa
     s.bbox = cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
     const auto most = std::max_element(ws.gathered_counts.begin(), ws.gathered_counts.end());
     TargetDetection d = toDetection(s, static_cast<std::size_t>(most - ws.gathered_counts.begin()));
-    d.spot_paths = spots;
-    d.spots_found = true;
+    holdSpots(d, spots, ws);
     d.robust = true;
     if (o.report_all_targets) {
       out.push_back(d);
@@ -672,8 +706,7 @@ Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Path
     if (!findSpots(o, g, s.fit.ellipse, i, ws, spots)) continue;
     if (!traceCandidate(o, paths.path(i), image, s)) continue;
     TargetDetection d = toDetection(s, i);
-    d.spot_paths = spots;
-    d.spots_found = true;
+    holdSpots(d, spots, ws);
     out.push_back(d);
   }
   // Every spot-holding path that failed the plain fit, also when a target was found
@@ -698,8 +731,7 @@ Status detectTarget(const EllipseOptions& o, const TargetGeometry& g, const Path
       s.fit = fit;
       s.trace = trace;
       TargetDetection d = toDetection(s, i);
-      d.spot_paths = spots;
-      d.spots_found = true;
+      holdSpots(d, spots, ws);
       d.robust = true;
       out.push_back(d);
     }

@@ -71,6 +71,9 @@ struct TargetDetection {
   cv::Rect bbox;              // of the path's pixels
   // Paths of the centre spot and the offset spot (kNoPath when not found).
   std::array<std::size_t, 2> spot_paths{kNoPath, kNoPath};
+  // Their paths' boxes in the image (the spots and a pixel round them), when found: the
+  // reconstruction's own spot search falls back on them (extractSpots).
+  std::array<cv::Rect, 2> spot_boxes{};
   bool spots_found = false;
   bool robust = false;        // found by the consensus fit
 };

@@ -157,6 +157,11 @@ void swapPasses(StageChain& chain, FrameResult& out) {
 }
 
 // The reconstruction chain of thesis 5.2.2 for the target found (or every target found).
+// The spots the detection stage found, for the reconstruction's spot search to fall back on.
+const std::array<cv::Rect, 2>* detectedSpots(const TargetDetection& d) {
+  return d.spots_found ? &d.spot_boxes : nullptr;
+}
+
 void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsToReconstruct which, StageChain& chain,
                         FrameResult& out, const Pose* expected) {
   if (!reached(settings.pipeline.level, ApplicationLevel::Reconstruction)) return;
@@ -165,8 +170,9 @@ void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsTo
   const ReconstructionConfig config = reconstructionConfig(settings);
   out.lens_inverse = lensInverse(config);
   if (which == TargetsToReconstruct::Best) {
-    out.status = reconstructTarget(config, grey, chain.detections.front().ellipse, out.threshold,
-                                   chain.reconstruction_ws, chain.reconstruction, expected);
+    const TargetDetection& d = chain.detections.front();
+    out.status = reconstructTarget(config, grey, d.ellipse, out.threshold, chain.reconstruction_ws,
+                                   chain.reconstruction, expected, detectedSpots(d));
     keepDisplayFeatures(chain.reconstruction, out);
     if (ok(out.status)) out.pose = chain.reconstruction.pose;
     if (out.status == Status::AmbiguousPose || (ok(out.status) && chain.reconstruction.halfway_pose))
@@ -175,7 +181,8 @@ void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsTo
     for (std::size_t i = 0; i < chain.detections.size(); ++i) {
       TargetSummary& target = out.targets[i];
       target.status = reconstructTarget(config, grey, chain.detections[i].ellipse, out.threshold,
-                                        chain.reconstruction_ws, chain.reconstruction);
+                                        chain.reconstruction_ws, chain.reconstruction, nullptr,
+                                        detectedSpots(chain.detections[i]));
       if (!ok(target.status)) continue;
       target.pose = chain.reconstruction.pose;
       if (!out.pose) {
@@ -204,7 +211,8 @@ bool keepTheOneThatReconstructs(const Settings& settings, const cv::Mat& grey, S
   std::size_t fitting = 0, kept = 0;
   for (std::size_t i = 0; i < chain.detections.size() && fitting < 2; ++i) {
     const Status s = reconstructTarget(config, grey, chain.detections[i].ellipse, out.threshold,
-                                       chain.reconstruction_ws, chain.reconstruction, expected);
+                                       chain.reconstruction_ws, chain.reconstruction, expected,
+                                       detectedSpots(chain.detections[i]));
     if (givesAPose(s)) {
       ++fitting;
       kept = i;
@@ -231,7 +239,7 @@ bool tryRunnersUp(const Settings& settings, const cv::Mat& grey, StageChain& cha
   const ReconstructionConfig config = reconstructionConfig(settings);
   for (const TargetDetection& d : chain.ellipse_ws.runners_up) {
     const Status s = reconstructTarget(config, grey, d.ellipse, out.threshold, chain.reconstruction_ws,
-                                       chain.reconstruction, expected);
+                                       chain.reconstruction, expected, detectedSpots(d));
     if (!givesAPose(s)) continue;
     chain.detections.front() = d;
     out.targets.front() = summary(d);
@@ -260,7 +268,11 @@ void enlargeDetection(int k, cv::Point origin, TargetDetection& d) {
   d.ellipse.b *= k;
   d.conic = conicFromEllipse(d.ellipse);
   d.sampson_px *= k;
-  d.bbox = cv::Rect(origin.x + k * d.bbox.x, origin.y + k * d.bbox.y, k * d.bbox.width, k * d.bbox.height);
+  auto enlargedBox = [&](const cv::Rect& r) {
+    return cv::Rect(origin.x + k * r.x, origin.y + k * r.y, k * r.width, k * r.height);
+  };
+  d.bbox = enlargedBox(d.bbox);
+  for (cv::Rect& box : d.spot_boxes) box = enlargedBox(box);
 }
 
 void enlargeDetections(int k, cv::Point origin, StageChain& chain, FrameResult& out) {

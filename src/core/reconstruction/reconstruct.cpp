@@ -141,7 +141,8 @@ Status choosePose(const ReconstructionConfig& config, const Pose* expected, Reco
 
 Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey,
                          const Ellipse& detected, int frameThreshold,
-                         ReconstructionWorkspace& ws, ReconstructionResult& out, const Pose* expected) {
+                         ReconstructionWorkspace& ws, ReconstructionResult& out, const Pose* expected,
+                         const std::array<cv::Rect, 2>* detectedSpots) {
   out.steps = ReconstructionSteps{};
   out.contour.clear();
   out.blur_spread_px = 0.0;
@@ -182,7 +183,7 @@ Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey
   out.blur_spread_px = fw.rim_blur_spread_px;
 
   const Status spotStatus = extractSpots(grey, out.crop, detected, config.target,
-                                         config.options.weighted_spot_centres, fw, out.spots);
+                                         config.options.weighted_spot_centres, fw, out.spots, detectedSpots);
   if (!ok(spotStatus)) return fail(out.steps.spots, spotStatus);
   out.steps.spots = Status::Ok;
 

@@ -84,11 +84,13 @@ LensInverse lensInverse(const ReconstructionConfig& config);
 // `frameThreshold` the threshold that stage used (for re-threshold None). A frame whose
 // size is not the camera model's gives FrameSizeMismatch.
 // `expected`, when given (a tracked stream's last pose), decides between the rim's two
-// circles when the spots cannot (see ReconstructionOptions).
+// circles when the spots cannot (see ReconstructionOptions). `detectedSpots`, when given,
+// are the boxes of the spots the detection stage found (TargetDetection::spot_boxes),
+// taken when the reconstruction's own spot search finds no pair (extractSpots).
 Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey,
                          const Ellipse& detected, int frameThreshold,
                          ReconstructionWorkspace& ws, ReconstructionResult& out,
-                         const Pose* expected = nullptr);
+                         const Pose* expected = nullptr, const std::array<cv::Rect, 2>* detectedSpots = nullptr);
 Status reconstructTarget(const Settings& settings, const cv::Mat& grey, const Ellipse& detected,
                          int frameThreshold, ReconstructionWorkspace& ws,
                          ReconstructionResult& out);

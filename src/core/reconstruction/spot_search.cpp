@@ -26,6 +26,7 @@ namespace {
 
 constexpr double kSpotSearchScale = 0.85;  // spots are searched inside 0.85 of the rim
 constexpr int kSpotBoxGrowPx = 3;
+constexpr int kDetectedSpotGrowPx = 1;
 constexpr double kSpotRimClearancePx = 2.5;  // spot centroids ignore pixels this near the rim
 // The weighted centre's window: a Gaussian of this fraction of the spot's expected radius
 // (measured on real-scene frames: 0.5-0.85 do alike, 1.3 loses a third of the gain).
@@ -439,7 +440,7 @@ bool diskLevels(const cv::Mat& grey, const cv::Rect& crop, const EllipseForm& in
 
 Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& detected,
                     const TargetGeometry& target, bool weightedCentres, FeatureWorkspace& ws,
-                    SpotFeatures& spots) {
+                    SpotFeatures& spots, const std::array<cv::Rect, 2>* detectedSpots) {
   spots.candidates = 0;
   // The crop was checked against the frame rethresholdCrop saw; reading another, smaller
   // frame through it would run past its rows.
@@ -467,6 +468,20 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
     darkComponents(grey, crop, inner, levelAt(0.5 * (dark + bright)), ws);
     chosen = chooseSpots(ws.components, crop.tl(), detected, target, expected, kept, spots.candidates);
   }
+  // A component that reaches the search's edge is a spot only for want of another: the
+  // detection's pair, found with the rim, is the better word then.
+  const bool byEdge = chosen && (kept[0].at_limit || kept[1].at_limit);
+  bool fromDetection = false;
+  if ((!chosen || byEdge) && detectedSpots && ((*detectedSpots)[0] & crop) == (*detectedSpots)[0] &&
+      ((*detectedSpots)[1] & crop) == (*detectedSpots)[1] && !(*detectedSpots)[0].empty() &&
+      !(*detectedSpots)[1].empty()) {
+    for (int k = 0; k < 2; ++k) {
+      const cv::Rect& box = (*detectedSpots)[static_cast<std::size_t>(k)];
+      kept[static_cast<std::size_t>(k)] = {box.area(), box.x - crop.x, box.y - crop.y, box.x + box.width - 1 - crop.x,
+                                           box.y + box.height - 1 - crop.y, false};
+    }
+    chosen = fromDetection = true;
+  }
   if (!chosen && spots.candidates > 2) return Status::AmbiguousSpots;
   if (!chosen) {
     // Too small or faint to be cut at the mid level: where the geometry puts them.
@@ -483,9 +498,12 @@ Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& de
   const EllipseForm rim(detected, 1.0);
   const double rhoMax = std::max(0.5, 1.0 - kSpotRimClearancePx / detected.b);
   const double rho2Max = rhoMax * rhoMax;
+  // A detection's spot box holds a ring of paper already, and what lies beyond it may be
+  // the occluder the crop's cut joined to the spot.
+  const int grow = fromDetection ? kDetectedSpotGrowPx : kSpotBoxGrowPx;
   auto grownBox = [&](const SpotComponent& cmp) {
-    return cv::Rect(crop.x + cmp.x0 - kSpotBoxGrowPx, crop.y + cmp.y0 - kSpotBoxGrowPx,
-                    cmp.x1 - cmp.x0 + 1 + 2 * kSpotBoxGrowPx, cmp.y1 - cmp.y0 + 1 + 2 * kSpotBoxGrowPx) &
+    return cv::Rect(crop.x + cmp.x0 - grow, crop.y + cmp.y0 - grow, cmp.x1 - cmp.x0 + 1 + 2 * grow,
+                    cmp.y1 - cmp.y0 + 1 + 2 * grow) &
            cv::Rect(0, 0, grey.cols, grey.rows);
   };
   // On a small, far target the two spots lie a few pixels apart and each grown box holds

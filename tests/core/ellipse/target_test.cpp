@@ -381,6 +381,53 @@ TEST_F(TargetScene, AThirdMarkOnTheDiskLeavesThePairThatSitsBest) {
   }
 }
 
+// Seeds on an occluder's two straight edges fit a needle of an ellipse that they trace
+// whole. No circle is seen that flat (beyond target_max_tilt_deg): the consensus fit leaves
+// such needles out. A path that is a needle (axes 100 and 8 px) gives no ellipse, one as
+// flat as a circle at 75 deg does.
+TEST(TargetDetection, TheConsensusFitTakesNoNeedle) {
+  for (const double minor : {8.0, 26.0}) {
+    EllipseWorkspace ws;
+    std::vector<EdgePixel> path;
+    for (int k = 0; k < 400; ++k) {
+      const double t = 2.0 * kPi * k / 400.0;
+      const auto x = static_cast<std::int16_t>(std::lround(320.0 + 100.0 * std::cos(t)));
+      const auto y = static_cast<std::int16_t>(std::lround(240.0 + minor * std::sin(t)));
+      if (path.empty() || path.back().x != x || path.back().y != y)
+        path.push_back({x, y, static_cast<std::int16_t>(-std::cos(t) * 4), static_cast<std::int16_t>(-std::sin(t) * 4)});
+    }
+    EllipseFit fit;
+    EllipseTrace trace;
+    const Status st = fitEllipseRobust(EllipseOptions{}, path, {640, 480}, ws, fit, trace);
+    if (minor < 10.0) {
+      EXPECT_FALSE(ok(st)) << fit.ellipse.a << " x " << fit.ellipse.b;
+    } else {
+      ASSERT_EQ(st, Status::Ok);
+      EXPECT_NEAR(fit.ellipse.b, minor, 1.0);
+    }
+  }
+}
+
+// The detection hands the reconstruction its spots' boxes (the spots and their paths' ring),
+// also from a reduced or robust pass: each holds its spot's true centre.
+TEST_F(TargetScene, TheSpotsBoxesHoldTheSpots) {
+  for (const Pose& pose : {Pose{0, 0, 0, 0, 0, 700}, Pose{30, -20, 45, 60, 30, 1100}}) {
+    ASSERT_EQ(detect(render(pose)), Status::Ok);
+    ASSERT_EQ(found.size(), 1u);
+    ASSERT_TRUE(found[0].spots_found);
+    const Eigen::Matrix3d R = rotationMatrix(pose);
+    const std::array<Eigen::Vector2d, 2> truth{projectIdeal(camera, translation(pose)),
+                                               projectIdeal(camera, R * Eigen::Vector3d(target.spot_offset_mm, 0, 0) +
+                                                                        translation(pose))};
+    const double spotPx = camera.fu() * target.spot_radius_mm / pose.tz_mm;
+    for (int k = 0; k < 2; ++k) {
+      const cv::Rect& box = found[0].spot_boxes[static_cast<std::size_t>(k)];
+      EXPECT_TRUE(box.contains(cv::Point(static_cast<int>(truth[k].x()), static_cast<int>(truth[k].y())))) << k;
+      EXPECT_LT(box.width, 2.0 * spotPx + 6.0) << k;
+    }
+  }
+}
+
 TEST(TargetDetection, EmptyAndTinyInputs) {
   EllipseWorkspace ws;
   std::vector<TargetDetection> out;

@@ -391,6 +391,45 @@ TEST_F(FeatureTest, SpotsNotFoundAmbiguousAndSpecksIgnored) {
   EXPECT_EQ(spots.candidates, 3);
 }
 
+// A dark occluder (tape, a clamp) across the disk a pixel from the offset spot: the crop's
+// one cut level joins the two under blur, and the search alone takes the strip with the
+// spot (a component that reaches its edge). The detection stage's local binary image
+// parts them; given its spot boxes, the search takes them, and the offset
+// spot's centre stays within half a pixel of the true one (the blurred strip darkens the
+// edge of its box), where alone the search is off by more than 3 px.
+TEST_F(FeatureTest, AnOccluderJoinedToASpotLeavesItToTheDetectionsSpots) {
+  const Pose pose = makePose(cam, 700, 20, 10, 0, 330, 230);
+  const Ellipse e = seenRimEllipse(cam, target, pose);
+  renderTarget(cam, target, scene, pose, image);
+  Eigen::Vector2d centre, offset;
+  ASSERT_TRUE(conicMatrixCentre(imageConicOfTargetCircle(cam, pose, 0, 0, target.spot_radius_mm), centre));
+  ASSERT_TRUE(conicMatrixCentre(
+      imageConicOfTargetCircle(cam, pose, target.spot_offset_mm, 0, target.spot_radius_mm), offset));
+  const double spotPx = cam.fu() * target.spot_radius_mm / pose.tz_mm;
+  // The strip right of the offset spot, then the frame blurred as a lens does.
+  const int stripX = static_cast<int>(std::ceil(offset.x() + spotPx + 1.0));
+  cv::rectangle(image, cv::Rect(stripX, 0, 12, image.rows), cv::Scalar(60), cv::FILLED);
+  cv::GaussianBlur(image, image, cv::Size(0, 0), 1.0);
+  ASSERT_EQ(targetCrop(e, 4, image.size(), crop), Status::Ok);
+  ASSERT_EQ(rethresholdCrop(image, crop, {ThresholdMethod::AtMod, 0}, -1, ws, threshold), Status::Ok);
+  SpotFeatures spots;
+  const Status alone = extractSpots(image, crop, e, target, true, ws, spots);
+  EXPECT_TRUE(!ok(alone) || (spots.offset_spot - offset).norm() > 3.0) << alone;
+  auto boxAbout = [&](const Eigen::Vector2d& p) {
+    const int r = static_cast<int>(std::round(spotPx)) + 1;  // the spot and its path's ring
+    return cv::Rect(static_cast<int>(std::floor(p.x())) - r, static_cast<int>(std::floor(p.y())) - r, 2 * r + 1,
+                    2 * r + 1);
+  };
+  const std::array<cv::Rect, 2> detected{boxAbout(centre), boxAbout(offset)};
+  ASSERT_EQ(extractSpots(image, crop, e, target, true, ws, spots, &detected), Status::Ok);
+  EXPECT_LT((spots.centre_spot - centre).norm(), 0.05);
+  EXPECT_LT((spots.offset_spot - offset).norm(), 0.5);
+  // Boxes outside the crop are not taken.
+  const std::array<cv::Rect, 2> outside{cv::Rect(0, 0, 5, 5), cv::Rect(10, 0, 5, 5)};
+  const Status withOutside = extractSpots(image, crop, e, target, true, ws, spots, &outside);
+  EXPECT_TRUE(!ok(withOutside) || (spots.offset_spot - offset).norm() > 3.0) << withOutside;
+}
+
 // The spot search's rule done plainly, for reference: the 8-connected components (OpenCV's
 // labelling) of the pixels at most the middle of the class means, inside 0.85 of the
 // detected ellipse row by row (ceil of the left crossing to floor of the right), whose area
