@@ -137,8 +137,9 @@ std::string wrapped(std::string_view text, std::size_t width, std::string_view i
 std::string columnsHelp() {
   std::string text = "\nOne row per frame: " + recordCsvHeader(kReconstructCsv) + ".\n";
   for (const FrameField& f : frameFields()) {
-    if (!(f.outputs & (kReconstructCsv | kReconstructJson)) || !f.unit.empty() || f.name == "frame" ||
-        f.name == "status")
+    // The pose and its truth are described above; every other field here.
+    if (!(f.outputs & (kReconstructCsv | kReconstructJson)) || f.unit == "deg" || f.unit == "mm" ||
+        f.name == "frame" || f.name == "status")
       continue;
     text += wrapped(std::string(f.name) + ((f.outputs & kReconstructCsv) ? "" : " (JSON only)") + ": " +
                         std::string(f.description),

@@ -104,9 +104,13 @@ TEST(CliReconstruction, JsonEscapesNamesAndMatchesTheRenderedPoses) {
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(row[names[k]].get<double>(), t[k], 0.1) << names[k] << " " << row.dump();
     for (int k = 3; k < 6; ++k)
       EXPECT_NEAR(row[names[k]].get<double>(), t[k], 1e-3 * t[5]) << names[k] << " " << row.dump();
+    // The self-check's measures of a clean frame: well inside its limits.
+    EXPECT_LT(row["spot_error_px"].get<double>(), 0.2) << row.dump();
+    EXPECT_LT(row["rim_error_px"].get<double>(), 0.2) << row.dump();
   }
   EXPECT_EQ(rows[2]["status"], "NoTarget") << rows[2].dump();
   EXPECT_FALSE(rows[2].contains("Tz_mm"));
+  EXPECT_FALSE(rows[2].contains("rim_error_px"));
 
   // The same NoTarget row in CSV.
   r = cli("reconstruct " + shellQuoted(dir / "blank.png"));

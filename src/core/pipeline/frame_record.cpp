@@ -36,6 +36,8 @@ FieldValue searchOf(const FrameResult& r, int k) { return rectSide(r.search_regi
 FieldValue detectedOf(const FrameResult& r, int k) { return rectSide(r.detected_region, k); }
 FieldValue stageTimeOf(const FrameResult& r, int s) { return number(r.times.us[static_cast<std::size_t>(s)]); }
 FieldValue rimSeenOf(const FrameResult& r, int) { return r.rim_seen > 0.0 ? number(r.rim_seen) : none(); }
+FieldValue spotErrorOf(const FrameResult& r, int) { return r.spot_error_px >= 0.0 ? number(r.spot_error_px) : none(); }
+FieldValue rimErrorOf(const FrameResult& r, int) { return r.rim_error_px >= 0.0 ? number(r.rim_error_px) : none(); }
 FieldValue lensInverseOf(const FrameResult& r, int) {
   return r.reached == ApplicationLevel::Reconstruction ? text(std::string(lensInverseName(r.lens_inverse))) : none();
 }
@@ -81,6 +83,14 @@ std::vector<FrameField> buildFields() {
                "the share of the rim the pose was fitted to (0..1; less where an occluder hides part of it), "
                "none without a fitted rim",
                3, kEveryOutput | kPython | kResultsText, rimSeenOf});
+  f.push_back({"spot_error_px", "px", "Spot err",
+               "the self-check: how far the pose puts a spot's image from where it was found (the larger of "
+               "the two; PoseInconsistent beyond max_spot_error_px), none when no pose was checked",
+               3, kReconstructJson | kResultsText, spotErrorOf});
+  f.push_back({"rim_error_px", "px", "Rim err",
+               "the self-check: the RMS distance of the rim's contour points from the pose's rim "
+               "(PoseInconsistent beyond max_rim_error_px), none when no pose was checked",
+               3, kReconstructJson | kResultsText, rimErrorOf});
   f.push_back({"lens_inverse", "", "Lens",
                "which inverse of the lens model corrected the features: none, taylor, exact, exact-wide-lens; "
                "none before the reconstruction stage",

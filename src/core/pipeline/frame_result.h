@@ -68,6 +68,10 @@ struct FrameResult {
   // The share of the rim seen (reconstruction/rim_fit.h), 0..1; 0 when no rim was fitted.
   // Less than 1 where an occluder hides part of it; contour_points holds only the rim's.
   double rim_seen = 0.0;
+  // The self-check's measures of the pose kept (docs/reconstruction.md): how far it puts a
+  // spot's image from where it was found, and its rim's (RMS) from the contour points, in
+  // px; negative when no pose was checked.
+  double spot_error_px = -1.0, rim_error_px = -1.0;
   // Which inverse of the lens model corrected the features (undistort.h).
   LensInverse lens_inverse = LensInverse::None;
   StageTimes times;

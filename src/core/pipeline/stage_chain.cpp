@@ -40,6 +40,9 @@ TargetSummary summary(const TargetDetection& d) {
 // Shows the features the pose was computed from (the last target reconstructed).
 void keepDisplayFeatures(const ReconstructionResult& r, FrameResult& out) {
   out.rim_seen = r.rim_seen;
+  const bool checked = ok(r.status) || r.status == Status::AmbiguousPose || r.status == Status::PoseInconsistent;
+  out.spot_error_px = checked ? r.spot_error_px : -1.0;
+  out.rim_error_px = checked ? r.rim_error_px : -1.0;
   out.contour_points.clear();
   for (const Eigen::Vector2d& p : r.contour) out.contour_points.push_back(point(p));
   out.spots = {point(r.spots.centre_spot), point(r.spots.offset_spot)};
@@ -115,6 +118,7 @@ void clearPassFeatures(FrameResult& out) {
   out.ambiguous_poses.reset();
   out.contour_points.clear();
   out.rim_seen = 0.0;
+  out.spot_error_px = out.rim_error_px = -1.0;
 }
 
 // Back to an earlier pass's report; the features shown were the later pass's, so none.

@@ -24,6 +24,8 @@ FrameResult tracked() {
   r.search_region = {10, 20, 300, 200};
   r.detected_region = {40, 50, 100, 90};
   r.rim_seen = 0.8125;
+  r.spot_error_px = 0.2504;
+  r.rim_error_px = 0.0626;
   r.lens_inverse = LensInverse::ExactWideLens;
   for (std::size_t s = 0; s < kStageCount; ++s) r.times.us[s] = 10.25 * static_cast<double>(s + 1);
   return r;
@@ -75,6 +77,10 @@ TEST(FrameRecord, JsonOutputsAgreeWithTheCsv) {
   EXPECT_EQ(members["frame"], "12");
   EXPECT_EQ(members["lens_inverse"], "exact-wide-lens");
   EXPECT_DOUBLE_EQ(members["rim_seen"].get<double>(), 0.812);
+  // The self-check's measures: reconstruct's JSON only, the CSVs keep their columns.
+  EXPECT_DOUBLE_EQ(members["spot_error_px"].get<double>(), 0.250);
+  EXPECT_DOUBLE_EQ(members["rim_error_px"].get<double>(), 0.063);
+  EXPECT_FALSE(stream.contains("rim_error_px"));
 
   FrameResult miss;
   miss.index = 4;
@@ -85,6 +91,8 @@ TEST(FrameRecord, JsonOutputsAgreeWithTheCsv) {
   const auto left = nlohmann::json::parse("{" + recordJsonMembers(miss, kReconstructJson) + "}");
   EXPECT_FALSE(left.contains("Rx_deg"));
   EXPECT_FALSE(left.contains("rim_seen"));
+  EXPECT_FALSE(left.contains("spot_error_px"));
+  EXPECT_FALSE(left.contains("rim_error_px"));
   EXPECT_FALSE(left.contains("lens_inverse"));  // the reconstruction stage did not run
 }
 
