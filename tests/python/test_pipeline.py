@@ -34,6 +34,8 @@ def test_reconstruct_returns_the_rendered_pose(truth):
     assert r.ok and r.status == "ok", r
     assert_pose_near(r.pose, truth)
     assert r.ellipse is not None and r.spots is not None
+    # The self-check's measures of a clean frame, well inside its limits.
+    assert 0 <= r.spot_error_px < 0.2 and 0 <= r.rim_error_px < 0.2, (r.spot_error_px, r.rim_error_px)
     r.raise_for_status()  # nothing to raise
     assert "Pose(" in repr(r)
 
@@ -43,6 +45,7 @@ def test_detect_finds_the_ellipse_and_spots_without_a_pose():
     image = imagepro.render(truth)
     r = imagepro.detect(image)
     assert r.ok and r.pose is None and r.reached == "ellipse"
+    assert r.spot_error_px is None and r.rim_error_px is None  # no pose was checked
     rec = imagepro.reconstruct(image)
     # The same target: the detected ellipse lies around the reconstruction's spots.
     e = r.ellipse
