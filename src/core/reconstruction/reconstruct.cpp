@@ -24,6 +24,11 @@ ReconstructionConfig reconstructionConfig(const Settings& settings) {
   return config;
 }
 
+bool passesSelfCheck(const ReconstructionOptions& o, double spotErrorPx, double rimErrorPx) {
+  if (spotErrorPx > o.max_spot_error_px || rimErrorPx > o.max_rim_error_px) return false;
+  return spotErrorPx <= kJointErrorShare * o.max_spot_error_px || rimErrorPx <= kJointErrorShare * o.max_rim_error_px;
+}
+
 LensInverse lensInverse(const ReconstructionConfig& config) {
   const ReconstructionOptions& o = config.options;
   if (!o.distortion_correction || config.camera.distortion.isZero()) return LensInverse::None;
@@ -132,8 +137,7 @@ Status choosePose(const ReconstructionConfig& config, const Pose* expected, Reco
     }
   }
   out.rim_error_px = rimReprojectionError(config.camera, config.target, out.pose, out.contour_ideal);
-  if (out.spot_error_px > o.max_spot_error_px || out.rim_error_px > o.max_rim_error_px)
-    return Status::PoseInconsistent;
+  if (!passesSelfCheck(o, out.spot_error_px, out.rim_error_px)) return Status::PoseInconsistent;
   return ambiguous ? Status::AmbiguousPose : Status::Ok;
 }
 

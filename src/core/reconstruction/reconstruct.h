@@ -80,6 +80,14 @@ ReconstructionConfig reconstructionConfig(const Settings& settings);
 // Which inverse of the lens model corrects the features under `config`.
 LensInverse lensInverse(const ReconstructionConfig& config);
 
+// The self-check (docs/reconstruction.md): a pose passes when its spot error (the larger of
+// the two spots') is within max_spot_error_px, its rim error within max_rim_error_px, and
+// not both beyond kJointErrorShare of their limits. Either alone may be large on a pose that
+// is right (a rim combed by interlacing, a spot under glare); both together are a pose that
+// fits neither, as when an occluder bends the rim the pose was taken from.
+inline constexpr double kJointErrorShare = 0.6;
+bool passesSelfCheck(const ReconstructionOptions& options, double spotErrorPx, double rimErrorPx);
+
 // `detected` is the rim's ellipse found by the detection stage in the image as seen;
 // `frameThreshold` the threshold that stage used (for re-threshold None). A frame whose
 // size is not the camera model's gives FrameSizeMismatch.

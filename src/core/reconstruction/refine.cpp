@@ -227,8 +227,7 @@ Status refineReconstructedPose(const ReconstructionConfig& config, Reconstructio
                               out.offset_spot_ideal, out.pose, refined);
   if (!ok(s)) return s;
   const double spotError = std::max(refined.spot_errors_px[0], refined.spot_errors_px[1]);
-  if (spotError > config.options.max_spot_error_px || refined.rim_error_px > config.options.max_rim_error_px)
-    return Status::PoseInconsistent;
+  if (!passesSelfCheck(config.options, spotError, refined.rim_error_px)) return Status::PoseInconsistent;
   out.pose = refined.pose;
   out.spot_error_px = spotError;
   out.rim_error_px = refined.rim_error_px;

@@ -159,8 +159,8 @@ struct ReconstructionOptions {
   int crop_margin_px = 4;
   // Sub-pixel contour mode only (the pixel modes keep the thesis's rule, unchecked).
   // Self-check (docs/reconstruction.md): a pose that puts a spot's image further than this
-  // from where it was found, or the rim's further (RMS) from its contour points, is
-  // PoseInconsistent.
+  // from where it was found, or the rim's further (RMS) from its contour points, or both
+  // further than kJointErrorShare of these (reconstruct.h), is PoseInconsistent.
   double max_spot_error_px = 1.0;
   double max_rim_error_px = 1.0;
   // The rim's two circles: the one reprojecting the spots better is kept when its error is

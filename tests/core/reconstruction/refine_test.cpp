@@ -258,7 +258,7 @@ TEST_F(RefineReconstructTest, RenderedFramesOffAndOn) {
 }
 
 // The refinement never takes a pose out of the self-check's bounds: with the spot bound at
-// the analytic pose's own error, the refined pose is kept only when it stays within it, and
+// the analytic pose's own error (the rim's where that error is kJointErrorShare of it), the refined pose is kept only when it stays within it, and
 // with a bound no pose can meet, the analytic one is kept with its measures. A pose halfway
 // between two close circles is not refined.
 TEST_F(RefineReconstructTest, NeverLeavesTheSelfChecksBounds) {
@@ -272,12 +272,15 @@ TEST_F(RefineReconstructTest, NeverLeavesTheSelfChecksBounds) {
     ASSERT_EQ(run(truth, seed), Status::Ok);
     const Pose analytic = result.pose;
     const double analyticSpot = result.spot_error_px, analyticRim = result.rim_error_px;
+    // The rim bound so that the analytic pose's rim error is kJointErrorShare of it: the
+    // analytic pose then passes the joint bound too (passesSelfCheck).
     o.max_spot_error_px = analyticSpot;
-    o.max_rim_error_px = analyticRim;
+    o.max_rim_error_px = analyticRim / kJointErrorShare;
     o.refine_pose = true;
     ASSERT_EQ(run(truth, seed), Status::Ok);
     EXPECT_LE(result.spot_error_px, analyticSpot);
-    EXPECT_LE(result.rim_error_px, analyticRim);
+    EXPECT_LE(result.rim_error_px, o.max_rim_error_px);
+    EXPECT_TRUE(passesSelfCheck(o, result.spot_error_px, result.rim_error_px));
     if (result.steps.refine == Status::PoseInconsistent) {
       ++refused;
       EXPECT_EQ(result.pose.rx_deg, analytic.rx_deg);
