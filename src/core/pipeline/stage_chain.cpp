@@ -160,12 +160,12 @@ void swapPasses(StageChain& chain, FrameResult& out) {
   std::swap(chain.reported_factor, chain.spare.factor);
 }
 
-// The reconstruction chain of thesis 5.2.2 for the target found (or every target found).
 // The spots the detection stage found, for the reconstruction's spot search to fall back on.
 const std::array<cv::Rect, 2>* detectedSpots(const TargetDetection& d) {
   return d.spots_found ? &d.spot_boxes : nullptr;
 }
 
+// The reconstruction chain of thesis 5.2.2 for the target found (or every target found).
 void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsToReconstruct which, StageChain& chain,
                         FrameResult& out, const Pose* expected) {
   if (!reached(settings.pipeline.level, ApplicationLevel::Reconstruction)) return;

@@ -102,8 +102,9 @@ Status extractContour(ContourMode mode, const cv::Mat& grey, const cv::Rect& cro
 // The two spots (image px): SpotsNotFound with fewer than two, AmbiguousSpots with more.
 // Their centres are darkness-weighted centroids, then with `weightedCentres` refined under
 // a Gaussian window that follows the spot (ReconstructionOptions::weighted_spot_centres).
-// When the crop's own cut finds no pair, `detectedSpots` (the detection stage's spot
-// boxes, centre spot first), when given and inside the crop, are taken: the detection's
+// When the crop's own cut finds no pair, or one only by taking a component that reaches
+// the search's edge, `detectedSpots` (the detection stage's spot boxes, centre spot
+// first), when given and inside the crop, are taken: the detection's
 // local binary image parts a spot from an occluder that the crop's one cut level joins
 // to it.
 Status extractSpots(const cv::Mat& grey, const cv::Rect& crop, const Ellipse& detected,

@@ -94,7 +94,7 @@ bool passesSelfCheck(const ReconstructionOptions& options, double spotErrorPx, d
 // `expected`, when given (a tracked stream's last pose), decides between the rim's two
 // circles when the spots cannot (see ReconstructionOptions). `detectedSpots`, when given,
 // are the boxes of the spots the detection stage found (TargetDetection::spot_boxes),
-// taken when the reconstruction's own spot search finds no pair (extractSpots).
+// taken when the reconstruction's own spot search finds no clear pair (extractSpots).
 Status reconstructTarget(const ReconstructionConfig& config, const cv::Mat& grey,
                          const Ellipse& detected, int frameThreshold,
                          ReconstructionWorkspace& ws, ReconstructionResult& out,
