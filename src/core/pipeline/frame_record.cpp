@@ -85,12 +85,12 @@ std::vector<FrameField> buildFields() {
                3, kEveryOutput | kPython | kResultsText, rimSeenOf});
   f.push_back({"spot_error_px", "px", "Spot err",
                "the self-check: how far the pose puts a spot's image from where it was found (the larger of "
-               "the two; PoseInconsistent beyond max_spot_error_px, or with the rim error when both pass 0.6 of "
+               "the two; PoseInconsistent beyond max_spot_error_px, or with the rim error when both pass 0.5 of "
                "their limits), none when no pose was checked",
                3, kReconstructJson | kPython | kResultsText, spotErrorOf});
   f.push_back({"rim_error_px", "px", "Rim err",
                "the self-check: the RMS distance of the rim's contour points from the pose's rim "
-               "(PoseInconsistent beyond max_rim_error_px, or with the spot error when both pass 0.6 of their "
+               "(PoseInconsistent beyond max_rim_error_px, or with the spot error when both pass 0.5 of their "
                "limits), none when no pose was checked",
                3, kReconstructJson | kPython | kResultsText, rimErrorOf});
   f.push_back({"lens_inverse", "", "Lens",

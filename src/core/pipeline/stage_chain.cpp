@@ -317,6 +317,13 @@ struct Pass {
 // a tracked stream's miss) skips it, for its cost (a millisecond or more on a cluttered
 // frame); a tracked region, small, keeps it.
 constexpr int kNarrowWindowPx = 15;
+// On a frame wider than 640 px a far disk is wider in pixels, and a 15 px window cuts its
+// blurred spots into the card; so first a local pass with the narrow window at the frame's
+// scale (a 43rd of its width: 29 px at 1280 x 720), then the 15 px one. On the webcam
+// stills a dim disk (paper at 70-120) before a bright scene is darker than the wide
+// window's mean and only a window about its size finds it (docs/benchmarks.md, *A
+// narrow pass at the frame's scale*).
+int scaledNarrowWindowPx(int frameWidth) { return std::max(kNarrowWindowPx, frameWidth / 43) | 1; }
 
 // Whether a missed pass's report says more than another's: it got further through the
 // stages, or as far at full size where the other was reduced.
@@ -410,9 +417,10 @@ bool thresholdFrame(const PipelineOptions& o, const Search& search, StageChain& 
 
 // The passes in order: reduced before full size, and with global-then-local the global
 // threshold before the local one at each size (threshold cycling on a miss), then the
-// narrow local window when the settings leave the window to the image.
+// narrow local windows (at the frame's scale, then 15 px) when the settings leave the
+// window to the image.
 struct PassPlan {
-  std::array<Pass, 5> passes{};
+  std::array<Pass, 6> passes{};
   int count = 0;
 };
 
@@ -423,8 +431,11 @@ PassPlan planPasses(const BinarizationOptions& b, int k, const Search& search) {
     if (b.mode != Binarization::Global) plan.passes[plan.count++] = {true, factor};
     if (k == 1) break;
   }
-  if (b.mode != Binarization::Global && b.window_px == 0 && (!search.whole_frame || search.expected == nullptr))
+  if (b.mode != Binarization::Global && b.window_px == 0 && (!search.whole_frame || search.expected == nullptr)) {
+    const int scaled = scaledNarrowWindowPx(search.grey.cols);
+    if (scaled > kNarrowWindowPx) plan.passes[plan.count++] = {true, 1, scaled};
     plan.passes[plan.count++] = {true, 1, kNarrowWindowPx};
+  }
   return plan;
 }
 

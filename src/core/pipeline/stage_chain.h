@@ -12,9 +12,10 @@
 // a reconstruction that fails), the second: edges, paths, ellipses and the pose are then
 // found once more on the local binary image, and that pass is kept when it finds the
 // target, or, when both miss, when it got further through the stages. With the local
-// window left to the image's size (window_px 0), a last local pass with a narrow window
-// (15 px, about a far target's disk) follows a miss of every other, except on a whole
-// frame searched right after a pose (a tracked stream's miss).
+// window left to the image's size (window_px 0), last local passes with a narrow window
+// (about a far target's disk: on a frame wider than 640 px one at the frame's scale, a
+// 43rd of its width, then 15 px) follow a miss of every other, except on a whole frame
+// searched right after a pose (a tracked stream's miss).
 //
 // Coarse search (pipeline.binarization.coarse_search): a whole frame at least
 // 2 * kCoarseWidthPx wide (reduce.h), searched for the best target down to its pose, is

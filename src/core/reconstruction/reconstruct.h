@@ -85,7 +85,7 @@ LensInverse lensInverse(const ReconstructionConfig& config);
 // not both beyond kJointErrorShare of their limits. Either alone may be large on a pose that
 // is right (a rim combed by interlacing, a spot under glare); both together are a pose that
 // fits neither, as when an occluder bends the rim the pose was taken from.
-inline constexpr double kJointErrorShare = 0.6;
+inline constexpr double kJointErrorShare = 0.5;
 bool passesSelfCheck(const ReconstructionOptions& options, double spotErrorPx, double rimErrorPx);
 
 // `detected` is the rim's ellipse found by the detection stage in the image as seen;

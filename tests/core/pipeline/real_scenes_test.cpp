@@ -158,5 +158,42 @@ TEST(RealScenes, DefaultPipelineOnPhotographs) {
   EXPECT_LE(reacquired_after, 3);
 }
 
+// Webcam stills (1280 x 720, f = 1000 px, the rig's occluders, glare and dim light, as
+// `render --scene real --webcam --seed 11 / 12` draws them) that only the narrow local
+// pass at the frame's scale (29 px, stage_chain.h) finds: far targets, 1.9-2.4 m, most on
+// dim paper (grey 71-93) before a brighter scene, whose disk is darker than the wide
+// window's mean and whose blurred spots the 15 px window cuts into the card. Before that
+// pass none of them was posed correctly (SpotsNotFound, NoTarget, one off by 23 deg).
+TEST(RealScenes, FarDimWebcamTargetsAreFoundByTheNarrowWindowAtTheFramesScale) {
+  std::vector<std::string> photos = listBackgrounds(defaultBackgroundsDir());
+  if (photos.empty()) GTEST_SKIP() << "no photographs in " << defaultBackgroundsDir();
+  Settings webcam;
+  std::string error;
+  ASSERT_EQ(loadSettings(std::string(IMAGEPRO_DATA_DIR) + "/webcam-1280x720.json", webcam, error), Status::Ok)
+      << error;
+  webcam.pipeline.tracking.mode = TrackingMode::Off;
+  const RealScenes rigged(webcam, std::move(photos), kWebcamRigEffects);
+  Engine engine(webcam);
+  const struct {
+    std::uint64_t seed;
+    int index;
+  } stills[] = {{11, 56}, {11, 86}, {11, 106}, {11, 132}, {12, 52}, {12, 57}, {12, 152}, {12, 374}};
+  int correct = 0;
+  for (const auto& [seed, index] : stills) {
+    RealSceneFrame f;
+    ASSERT_TRUE(rigged.still(seed, index, true, f, error)) << error;
+    ASSERT_TRUE(f.truth.has_value());
+    FrameResult r;
+    engine.process(asFrame(f, index, "frame_"), r);
+    const bool right = r.status == Status::Ok && r.pose &&
+                       rotationAngleBetweenDeg(rotationMatrix(*f.truth), rotationMatrix(*r.pose)) <= 5.0;
+    std::printf("seed %d still %d: %s%s\n", static_cast<int>(seed), index, statusName(r.status).data(),
+                right ? ", correct" : "");
+    correct += right;
+  }
+  // All eight on this machine; one left for another processor's rounding (see above).
+  EXPECT_GE(correct, 7);
+}
+
 }  // namespace
 }  // namespace imagepro

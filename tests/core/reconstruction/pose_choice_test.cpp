@@ -189,14 +189,16 @@ TEST_F(PoseChoiceTest, AMovedSpotIsRefusedAsInconsistent) {
 
 // Either error alone may be large on a right pose (a rim combed by interlacing: up to 0.97
 // px with spots within 0.33 px on PendulumStudy.InterlacedFrames' small swing); both beyond
-// 0.6 of their limits are a pose that fits neither (on the webcam stills, wrong poses of
-// 87-104 deg had both at 0.79-0.94 px, correct ones never both above 0.38 px).
+// 0.5 of their limits are a pose that fits neither (on the webcam stills, wrong poses of
+// 87-104 deg had both at 0.56-0.94 px, correct ones never both above 0.38 px).
 TEST(SelfCheck, BothErrorsHighTogetherFailWhereEitherAloneDoesNot) {
   ReconstructionOptions o;  // 1 px each
   EXPECT_TRUE(passesSelfCheck(o, 0.1, 0.1));
   EXPECT_TRUE(passesSelfCheck(o, 0.3, 0.95));   // a combed rim
   EXPECT_TRUE(passesSelfCheck(o, 0.9, 0.2));    // a spot under glare
   EXPECT_FALSE(passesSelfCheck(o, 0.8, 0.85));  // a bent rim and spots that disagree
+  EXPECT_FALSE(passesSelfCheck(o, 0.75, 0.56));
+  EXPECT_TRUE(passesSelfCheck(o, 0.75, 0.4));
   EXPECT_FALSE(passesSelfCheck(o, 1.1, 0.0));
   EXPECT_FALSE(passesSelfCheck(o, 0.0, 1.1));
   // The joint limit follows the limits.
