@@ -117,7 +117,7 @@ TEST(CliReconstruction, JsonEscapesNamesAndMatchesTheRenderedPoses) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const auto csv = lines(r.out);
   ASSERT_EQ(csv.size(), 2u) << r.out;
-  EXPECT_EQ(csv[1], "blank.png,NoTarget,,,,,,,");  // every column of the header, rim_seen empty
+  EXPECT_EQ(csv[1], "blank.png,NoTarget,,,,,,,,");  // every column of the header, rim_seen and target empty
 }
 
 // A frame of another size than the camera model's is a named error row, not a wrong pose.
@@ -273,7 +273,7 @@ TEST(CliReconstruction, ConstantVelocityMotionAdvancesAndWraps) {
   ASSERT_EQ(rows.size(), 9u) << r.out;
   for (std::size_t i = 1; i < rows.size(); ++i) {
     const auto f = csvFields(rows[i]);
-    ASSERT_EQ(f.size(), 15u) << rows[i];  // the pose, its truth, rim_seen
+    ASSERT_EQ(f.size(), 16u) << rows[i];  // the pose, its truth, rim_seen, target
     ASSERT_EQ(f[1], "ok") << rows[i];
     EXPECT_NEAR(std::stod(f[11]), 200.0 / 25.0 * static_cast<double>(i - 1), 1e-6) << rows[i];  // 25 Hz
     EXPECT_NEAR(std::stod(f[5]), std::stod(f[11]), 1.0) << rows[i];  // Tx against its truth

@@ -180,13 +180,14 @@ TEST(CliRenderReal, WebcamSetWithItsLensAndTheRigsEffects) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto poses = lines(r.out);
   ASSERT_EQ(poses.size(), 17u);
-  EXPECT_EQ(poses[0], "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,rim_seen");
+  EXPECT_EQ(poses[0], "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,rim_seen,target");
   int found = 0, partly = 0;
   for (std::size_t i = 1; i < poses.size(); ++i) {
     const auto f = fields(poses[i]), t = fields(rows[i]);
     if (f[1] != "ok") continue;
     ++found;
-    ASSERT_EQ(f.size(), 9u) << poses[i];
+    ASSERT_EQ(f.size(), 10u) << poses[i];  // the pose, rim_seen, target
+    EXPECT_EQ(f[9], "0") << poses[i];
     const double seen = std::stod(f[8]);
     EXPECT_GT(seen, 0.5) << poses[i];
     EXPECT_LE(seen, 1.0) << poses[i];

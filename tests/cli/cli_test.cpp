@@ -210,10 +210,11 @@ TEST(Cli, ReconstructWritesARowPerFrameEvenForBadFiles) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const auto rows = lines(r.out);
   ASSERT_EQ(rows.size(), 4u) << r.out;
-  EXPECT_EQ(rows[0], "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,rim_seen");
+  EXPECT_EQ(rows[0], "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,rim_seen,target");
   EXPECT_NE(rows[1].find(",ok,"), std::string::npos) << rows[1];
-  // A whole rim seen: its share is 1.
-  EXPECT_EQ(rows[1].substr(rows[1].rfind(',')), ",1.000") << rows[1];
+  // A whole rim seen: its share is 1; the settings' one target, id 0.
+  EXPECT_NE(rows[1].find(",1.000,0"), std::string::npos) << rows[1];
+  EXPECT_EQ(rows[1].substr(rows[1].rfind(',')), ",0") << rows[1];
   EXPECT_NE(rows[2].find(",FileNotFound,,,,,,"), std::string::npos) << rows[2];
   EXPECT_NE(rows[3].find(",FileUnreadable,,,,,,"), std::string::npos) << rows[3];
 }

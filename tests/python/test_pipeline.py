@@ -36,6 +36,7 @@ def test_reconstruct_returns_the_rendered_pose(truth):
     assert r.ellipse is not None and r.spots is not None
     # The self-check's measures of a clean frame, well inside its limits.
     assert 0 <= r.spot_error_px < 0.2 and 0 <= r.rim_error_px < 0.2, (r.spot_error_px, r.rim_error_px)
+    assert r.target == 0  # the settings' one target
     r.raise_for_status()  # nothing to raise
     assert "Pose(" in repr(r)
 
@@ -46,6 +47,7 @@ def test_detect_finds_the_ellipse_and_spots_without_a_pose():
     r = imagepro.detect(image)
     assert r.ok and r.pose is None and r.reached == "ellipse"
     assert r.spot_error_px is None and r.rim_error_px is None  # no pose was checked
+    assert r.target is None  # no target told before the reconstruction
     rec = imagepro.reconstruct(image)
     # The same target: the detected ellipse lies around the reconstruction's spots.
     e = r.ellipse

@@ -33,6 +33,8 @@ StatusText text(Status s) {
     case Status::NotAnEllipse: return {"NotAnEllipse", "the best conic through the points is not an ellipse"};
     case Status::NoTarget: return {"NoTarget", "no target was found in the frame"};
     case Status::AmbiguousTarget: return {"AmbiguousTarget", "more than one target was found in the frame"};
+    case Status::UnknownTarget:
+      return {"UnknownTarget", "a target was found whose offset spot matches no target of the settings' set"};
     case Status::SingularConic: return {"SingularConic", "the target's conic is singular"};
     case Status::SpotsNotFound: return {"SpotsNotFound", "the target's two spots were not found"};
     case Status::AmbiguousPose:

@@ -30,6 +30,7 @@ enum class Status : std::uint8_t {
   NotAnEllipse,        // the best conic is a hyperbola or a parabola
   NoTarget,
   AmbiguousTarget,
+  UnknownTarget,    // a target whose offset spot codes no member of the settings' set
   // reconstruction
   SingularConic,
   SpotsNotFound,

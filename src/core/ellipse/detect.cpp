@@ -193,6 +193,9 @@ void holdSpots(TargetDetection& d, const std::array<std::size_t, 2>& spots, cons
   d.spot_paths = spots;
   d.spot_boxes = {ws.paths[spots[0]].bbox, ws.paths[spots[1]].bbox};
   d.spots_found = true;
+  const PathSummary& c = ws.paths[spots[0]];
+  const PathSummary& f = ws.paths[spots[1]];
+  d.spot_fraction = (unitFrame(d.ellipse, f.cx, f.cy) - unitFrame(d.ellipse, c.cx, c.cy)).norm();
 }
 
 // Is dark path j one of the spots of a target found already?

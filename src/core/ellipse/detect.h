@@ -75,6 +75,9 @@ struct TargetDetection {
   // reconstruction's own spot search falls back on them (extractSpots).
   std::array<cv::Rect, 2> spot_boxes{};
   bool spots_found = false;
+  // When found: the spots' distance in the frame where the rim is the unit circle, the
+  // fraction of the radius at which the offset spot sits (target_set.h tells members by it).
+  double spot_fraction = 0.0;
   bool robust = false;        // found by the consensus fit
 };
 

@@ -43,6 +43,8 @@ struct Engine::Impl {
   // The last frame's pose in a stream, which decides between the rim's two circles where
   // the spots cannot; forgotten after a miss and on stills.
   std::optional<Pose> last_pose;
+  // The settings' target the tracker follows (target_set.h): its size projects the region.
+  int last_target_id = -1;
 
   void run(FrameResult& out);
 };
@@ -114,7 +116,8 @@ void Engine::Impl::run(FrameResult& out) {
     if (stream && !reachesEllipse(o.level)) tracker.reset();
     if (stream) {
       const bool guess = tracker.fromOneDetection();
-      const auto estimated = tracker.estimate(o.tracking, settings.camera(), settings.target, t, grey.size());
+      const TargetGeometry& followed = geometryOf(settings.targets, last_target_id, settings.target);
+      const auto estimated = tracker.estimate(o.tracking, settings.camera(), followed, t, grey.size());
       if (estimated && (!guess || guessPays(*estimated, grey.size(), o.binarization))) region = *estimated;
     }
   }
@@ -131,6 +134,7 @@ void Engine::Impl::run(FrameResult& out) {
       out.times[s] += guessed[s];
   }
   last_pose = out.pose;
+  last_target_id = out.target_id;
 
   // The tracker learns from every frame whose ellipse stage ran, and from every failure.
   const auto start = Clock::now();

@@ -41,6 +41,9 @@ FieldValue rimErrorOf(const FrameResult& r, int) { return r.rim_error_px >= 0.0 
 FieldValue lensInverseOf(const FrameResult& r, int) {
   return r.reached == ApplicationLevel::Reconstruction ? text(std::string(lensInverseName(r.lens_inverse))) : none();
 }
+FieldValue targetIdOf(const FrameResult& r, int) {
+  return r.target_id >= 0 ? number(static_cast<double>(r.target_id)) : none();
+}
 FieldValue nameOf(const FrameResult& r, int) { return r.name.empty() ? none() : text(r.name); }
 
 constexpr std::uint16_t kCsvAndJson = kDataOutCsv | kReconstructCsv | kReconstructJson;
@@ -83,6 +86,11 @@ std::vector<FrameField> buildFields() {
                "the share of the rim the pose was fitted to (0..1; less where an occluder hides part of it), "
                "none without a fitted rim",
                3, kEveryOutput | kPython | kResultsText, rimSeenOf});
+  f.push_back({"target", "", "Target",
+               "the id of the settings' target the frame's target is (0 for the one target of \"target\", "
+               "else its \"targets\" entry's), none when no target was told (UnknownTarget: a target whose "
+               "offset spot codes none)",
+               0, kEveryOutput | kPython | kResultsText, targetIdOf});
   f.push_back({"spot_error_px", "px", "Spot err",
                "the self-check: how far the pose puts a spot's image from where it was found (the larger of "
                "the two; PoseInconsistent beyond max_spot_error_px, or with the rim error when both pass 0.5 of "

@@ -41,6 +41,7 @@ struct TargetSummary {
   // When every target of the frame is reconstructed (stage_chain.h): its own outcome.
   Status status = Status::Stopped;
   std::optional<Pose> pose;
+  int target_id = -1;  // the member of the settings' set it is (target_set.h); -1: none
 };
 
 struct FrameResult {
@@ -58,6 +59,9 @@ struct FrameResult {
   std::size_t paths = 0;
   std::vector<TargetSummary> targets;
   std::optional<Pose> pose;
+  // Which target of the settings' set (target_set.h) the reconstructed one is: its id
+  // (kLoneTargetId without a set); -1 when none was told (no rim and spots, UnknownTarget).
+  int target_id = -1;
   // The rim's two circles as poses, the one fitting the spots better first, when the spots
   // could not tell them apart: AmbiguousPose, or Ok with `pose` halfway between them.
   std::optional<std::array<Pose, 2>> ambiguous_poses;

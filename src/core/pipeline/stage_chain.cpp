@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <limits>
 
 #include "core/segmentation/histogram.h"
 #include "core/segmentation/image_buffer.h"
 #include "core/segmentation/reduce.h"
 #include "core/segmentation/threshold.h"
+#include "core/settings/target_set.h"
 
 namespace imagepro {
 
@@ -91,7 +93,9 @@ void findTargets(const Settings& settings, const cv::Mat& grey, cv::Rect inside,
   if (which == TargetsToReconstruct::Every) ellipse.report_all_targets = true;
   // A pass may leave the rim from the spots (detect.h) to the passes after it (runStageChain).
   ellipse.targets_from_spots = ellipse.targets_from_spots && from_spots;
-  out.status = detectTarget(ellipse, settings.target, chain.paths, grey.size(), chain.ellipse_ws, chain.detections);
+  const TargetSearch search = targetSearch(settings.targets, settings.target, ellipse.target_spot_tolerance);
+  ellipse.target_spot_tolerance = search.spot_tolerance;
+  out.status = detectTarget(ellipse, search.geometry, chain.paths, grey.size(), chain.ellipse_ws, chain.detections);
   for (const TargetDetection& d : chain.detections) out.targets.push_back(summary(d));
   if (ok(out.status) && chain.detections.empty()) out.status = Status::NoTarget;
   if (ok(out.status)) out.detected_region = chain.detections.front().bbox;
@@ -105,16 +109,18 @@ struct PassOutcome {
   std::size_t edge_pixels = 0, paths = 0;
   cv::Rect detected_region;
   std::optional<Pose> pose;
+  int target_id = -1;
 };
 
 PassOutcome outcome(const FrameResult& out) {
-  return {out.status, out.reached, out.edge_pixels, out.paths, out.detected_region, out.pose};
+  return {out.status, out.reached, out.edge_pixels, out.paths, out.detected_region, out.pose, out.target_id};
 }
 
 // What a pass's reconstruction writes into the frame result: cleared at the frame's start
 // and before every pass after the first, so a pass never reports another's features.
 void clearPassFeatures(FrameResult& out) {
   out.pose.reset();
+  out.target_id = -1;
   out.ambiguous_poses.reset();
   out.contour_points.clear();
   out.rim_seen = 0.0;
@@ -130,6 +136,7 @@ void restore(const PassOutcome& pass, FrameResult& out) {
   out.paths = pass.paths;
   out.detected_region = pass.detected_region;
   out.pose = pass.pose;
+  out.target_id = pass.target_id;
 }
 
 // The passes swap their buffers with the spare ones, so either set may next hold the
@@ -165,6 +172,66 @@ const std::array<cv::Rect, 2>* detectedSpots(const TargetDetection& d) {
   return d.spots_found ? &d.spot_boxes : nullptr;
 }
 
+// A reconstruction that found a pose fitting the image: Ok, or AmbiguousPose (two poses
+// that both fit).
+bool givesAPose(Status s) { return s == Status::Ok || s == Status::AmbiguousPose; }
+
+// Detection `d` reconstructed as the member of the settings' set it is (target_set.h),
+// its result in chain.reconstruction and the member's id in `id` (-1: none). Without a set,
+// as the settings' one target. With one, as the member that the detection's measured
+// coding names (UnknownTarget when it names none), or, when the detection did not see the
+// spots (the reconstruction's own search finds them), as the member whose pose fits the
+// spots best. Either way the member's pose must fit the spots clearly better than any
+// other member's (kClearlyOtherMember): a target printed between two members' codings
+// fits both about as well, and is UnknownTarget rather than the nearer one.
+constexpr double kClearlyOtherMember = 2.0;
+
+Status reconstructDetection(const Settings& settings, const cv::Mat& grey, const TargetDetection& d, int threshold,
+                            StageChain& chain, const Pose* expected, int& id) {
+  ReconstructionConfig config = reconstructionConfig(settings);
+  const std::vector<TargetSpec>& set = settings.targets;
+  auto as = [&](std::size_t member) {
+    config.target = set[member].geometry;
+    return reconstructTarget(config, grey, d.ellipse, threshold, chain.reconstruction_ws, chain.reconstruction,
+                             expected, detectedSpots(d));
+  };
+  id = -1;
+  if (set.empty()) {
+    const Status s = reconstructTarget(config, grey, d.ellipse, threshold, chain.reconstruction_ws,
+                                       chain.reconstruction, expected, detectedSpots(d));
+    if (givesAPose(s)) id = kLoneTargetId;
+    return s;
+  }
+  int named = -1;
+  if (d.spots_found) {
+    named = memberCodedAs(set, d.spot_fraction);
+    if (named < 0) return Status::UnknownTarget;
+  }
+  // Every member (only the one named and its neighbours need to be, but a set is small):
+  // the best fit and the next.
+  int best = -1;
+  double bestError = 0.0, nextError = std::numeric_limits<double>::infinity();
+  Status first = Status::SpotsNotFound;
+  for (std::size_t m = 0; m < set.size(); ++m) {
+    const Status s = as(m);
+    if (m == 0) first = s;
+    if (!givesAPose(s)) continue;
+    const double e = chain.reconstruction.spot_error_px;
+    if (best < 0 || e < bestError) {
+      nextError = best < 0 ? nextError : bestError;
+      best = static_cast<int>(m);
+      bestError = e;
+    } else {
+      nextError = std::min(nextError, e);
+    }
+  }
+  if (best < 0) return named >= 0 ? as(static_cast<std::size_t>(named)) : first;
+  if ((named >= 0 && best != named) || nextError < kClearlyOtherMember * std::max(bestError, 0.05))
+    return Status::UnknownTarget;
+  id = set[static_cast<std::size_t>(best)].id;
+  return as(static_cast<std::size_t>(best));  // its result back in chain.reconstruction
+}
+
 // The reconstruction chain of thesis 5.2.2 for the target found (or every target found).
 void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsToReconstruct which, StageChain& chain,
                         FrameResult& out, const Pose* expected) {
@@ -174,9 +241,8 @@ void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsTo
   const ReconstructionConfig config = reconstructionConfig(settings);
   out.lens_inverse = lensInverse(config);
   if (which == TargetsToReconstruct::Best) {
-    const TargetDetection& d = chain.detections.front();
-    out.status = reconstructTarget(config, grey, d.ellipse, out.threshold, chain.reconstruction_ws,
-                                   chain.reconstruction, expected, detectedSpots(d));
+    out.status = reconstructDetection(settings, grey, chain.detections.front(), out.threshold, chain, expected,
+                                      out.target_id);
     keepDisplayFeatures(chain.reconstruction, out);
     if (ok(out.status)) out.pose = chain.reconstruction.pose;
     if (out.status == Status::AmbiguousPose || (ok(out.status) && chain.reconstruction.halfway_pose))
@@ -184,13 +250,13 @@ void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsTo
   } else {
     for (std::size_t i = 0; i < chain.detections.size(); ++i) {
       TargetSummary& target = out.targets[i];
-      target.status = reconstructTarget(config, grey, chain.detections[i].ellipse, out.threshold,
-                                        chain.reconstruction_ws, chain.reconstruction, nullptr,
-                                        detectedSpots(chain.detections[i]));
+      target.status = reconstructDetection(settings, grey, chain.detections[i], out.threshold, chain, nullptr,
+                                           target.target_id);
       if (!ok(target.status)) continue;
       target.pose = chain.reconstruction.pose;
       if (!out.pose) {
         out.pose = target.pose;
+        out.target_id = target.target_id;
         keepDisplayFeatures(chain.reconstruction, out);
       }
     }
@@ -198,9 +264,6 @@ void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsTo
   out.times[Stage::Reconstruction] += microsecondsSince(start);
 }
 
-// A reconstruction that found a pose fitting the image: Ok, or AmbiguousPose (two poses
-// that both fit). What the ellipse stage's candidates are tested by.
-bool givesAPose(Status s) { return s == Status::Ok || s == Status::AmbiguousPose; }
 
 // Several targets found (AmbiguousTarget) where one is wanted. A photograph's ring, eye or
 // crumpled tissue with two dark marks inside can pass the ellipse stage's test of a target
@@ -211,12 +274,10 @@ bool givesAPose(Status s) { return s == Status::Ok || s == Status::AmbiguousPose
 bool keepTheOneThatReconstructs(const Settings& settings, const cv::Mat& grey, StageChain& chain, FrameResult& out,
                                 const Pose* expected) {
   const auto start = Clock::now();
-  const ReconstructionConfig config = reconstructionConfig(settings);
   std::size_t fitting = 0, kept = 0;
   for (std::size_t i = 0; i < chain.detections.size() && fitting < 2; ++i) {
-    const Status s = reconstructTarget(config, grey, chain.detections[i].ellipse, out.threshold,
-                                       chain.reconstruction_ws, chain.reconstruction, expected,
-                                       detectedSpots(chain.detections[i]));
+    int id = -1;
+    const Status s = reconstructDetection(settings, grey, chain.detections[i], out.threshold, chain, expected, id);
     if (givesAPose(s)) {
       ++fitting;
       kept = i;
@@ -240,10 +301,9 @@ bool keepTheOneThatReconstructs(const Settings& settings, const cv::Mat& grey, S
 bool tryRunnersUp(const Settings& settings, const cv::Mat& grey, StageChain& chain, FrameResult& out,
                   const Pose* expected) {
   const auto start = Clock::now();
-  const ReconstructionConfig config = reconstructionConfig(settings);
   for (const TargetDetection& d : chain.ellipse_ws.runners_up) {
-    const Status s = reconstructTarget(config, grey, d.ellipse, out.threshold, chain.reconstruction_ws,
-                                       chain.reconstruction, expected, detectedSpots(d));
+    int id = -1;
+    const Status s = reconstructDetection(settings, grey, d, out.threshold, chain, expected, id);
     if (!givesAPose(s)) continue;
     chain.detections.front() = d;
     out.targets.front() = summary(d);

@@ -77,6 +77,13 @@ void visitSettings(Visitor& v, Settings& s) {
     v.field("spot_radius_mm", s.target.spot_radius_mm, 1e-9, kInf);
     v.field("spot_offset_mm", s.target.spot_offset_mm, 1e-9, kInf);
   });
+  v.list("targets", s.targets, [&](TargetSpec& t) {
+    v.field("id", t.id, 0, std::numeric_limits<int>::max());
+    v.field("name", t.name);
+    v.field("radius_mm", t.geometry.radius_mm, 1e-9, kInf);
+    v.field("spot_radius_mm", t.geometry.spot_radius_mm, 1e-9, kInf);
+    v.field("spot_offset_mm", t.geometry.spot_offset_mm, 1e-9, kInf);
+  });
   v.object("pattern", [&] {
     v.field("spot_spacing_mm", s.pattern.spot_spacing_mm, 1e-9, kInf);
     v.field("spot_radius_mm", s.pattern.spot_radius_mm, 1e-9, kInf);
@@ -271,6 +278,24 @@ class Reader {
     stack_.pop_back();
   }
 
+  // A list of objects, each read over a default element; the list replaces the old one.
+  template <class T, class Fn>
+  void list(const char* key, std::vector<T>& items, Fn&& body) {
+    const json* j = enter(key);
+    if (!j) return;
+    if (!j->is_array()) fail(path(key), "expected an array of objects");
+    std::vector<T> parsed(j->size());
+    for (std::size_t i = 0; i < j->size(); ++i) {
+      const std::string where = path(key) + "[" + std::to_string(i) + "]";
+      if (!(*j)[i].is_object()) fail(where, "expected an object");
+      stack_.push_back({&(*j)[i], where, {}});
+      body(parsed[i]);
+      finishObject();
+      stack_.pop_back();
+    }
+    items = std::move(parsed);
+  }
+
   void field(const char* key, bool& value) {
     if (const json* j = enter(key)) {
       if (!j->is_boolean()) fail(path(key), "expected true or false");
@@ -408,6 +433,19 @@ class Writer {
     stack_.pop_back();
   }
 
+  // An empty list is left out: a file without it reads the same.
+  template <class T, class Fn>
+  void list(const char* key, std::vector<T>& items, Fn&& body) {
+    if (items.empty()) return;
+    json& array = (*stack_.back())[key] = json::array();
+    for (T& item : items) {
+      array.push_back(json::object());
+      stack_.push_back(&array.back());
+      body(item);
+      stack_.pop_back();
+    }
+  }
+
   void field(const char* key, bool& value) { (*stack_.back())[key] = value; }
   void field(const char* key, std::string& value) { (*stack_.back())[key] = value; }
   void field(const char* key, std::map<std::string, std::int64_t>& value) {
@@ -527,6 +565,16 @@ class KeyPath {
     prefix_.push_back(path(key) + ".");
     body();
     prefix_.pop_back();
+  }
+
+  // The elements there are: none in the defaults, so settingKeys() lists no element's key.
+  template <class T, class Fn>
+  void list(const char* key, std::vector<T>& items, Fn&& body) {
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      prefix_.push_back(path(key) + "[" + std::to_string(i) + "].");
+      body(items[i]);
+      prefix_.pop_back();
+    }
   }
 
  protected:
@@ -700,6 +748,8 @@ Status settingsFromJson(std::string_view json_text, Settings& out, std::string& 
       if (const std::string problem = imageSizeProblem(c.width, c.height); !problem.empty())
         throw SettingsKeyError(at + ".width, " + at + ".height: " + problem);
     }
+    if (const std::string problem = targetSetProblem(parsed.targets); !problem.empty())
+      throw SettingsKeyError("targets: " + problem);
   } catch (const SettingsKeyError& e) {
     error = e.what();
     return Status::InvalidSettings;

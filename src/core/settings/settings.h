@@ -14,6 +14,7 @@
 #include "core/common/geometry.h"
 #include "core/common/status.h"
 #include "core/settings/options.h"
+#include "core/settings/target_set.h"
 
 namespace imagepro {
 
@@ -24,6 +25,9 @@ struct Settings {
   // runs a source sets it (the application's Input Source panel, the command line's input).
   SourceKind source = SourceKind::Virtual;
   TargetGeometry target;
+  // Several targets told apart by their offset spots (target_set.h); empty: `target` alone.
+  // Not written when empty, so a file of one target reads as before.
+  std::vector<TargetSpec> targets;
   PatternGeometry pattern;
   // The Virtual source: by default the card in a lit room (docs/user-manual.md 3.3), so
   // the first frames look like a camera's.

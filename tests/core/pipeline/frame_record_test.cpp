@@ -28,35 +28,36 @@ FrameResult tracked() {
   r.rim_error_px = 0.0626;
   r.lens_inverse = LensInverse::ExactWideLens;
   for (std::size_t s = 0; s < kStageCount; ++s) r.times.us[s] = 10.25 * static_cast<double>(s + 1);
+  r.target_id = 2;
   return r;
 }
 
 // The CSVs' columns are a contract with users' scripts: these are the columns of the
-// versions before, to the character.
+// versions before, to the character, with the fields added since at the end (`target`).
 TEST(FrameRecord, TheCsvColumnsAreTheContractsOnes) {
-  EXPECT_EQ(recordCsvHeader(kReconstructCsv), "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,rim_seen");
+  EXPECT_EQ(recordCsvHeader(kReconstructCsv), "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,rim_seen,target");
   EXPECT_EQ(recordCsvHeader(kReconstructCsv | kTruthCsv),
             "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,true_Rx_deg,true_Ry_deg,true_Rz_deg,true_Tx_mm,"
-            "true_Ty_mm,true_Tz_mm,rim_seen");
+            "true_Ty_mm,true_Tz_mm,rim_seen,target");
   EXPECT_EQ(DataOut::header(),
             "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,timestamp_s,search_x,search_y,search_w,search_h,"
             "target_x,target_y,target_w,target_h,grab_us,crop_us,threshold_us,edges_us,connectivity_us,ellipse_us,"
-            "reconstruction_us,tracking_us,rim_seen");
+            "reconstruction_us,tracking_us,rim_seen,target");
 }
 
 TEST(FrameRecord, RowsHaveACellForEveryColumn) {
   const FrameResult r = tracked();
   EXPECT_EQ(recordCsvRow(r, kReconstructCsv | kTruthCsv),
             "12,ok,1.500000,-2.250000,30.125000,10.000000,-20.500000,812.750000,1.500000,-2.000000,30.000000,"
-            "10.000000,-20.000000,812.000000,0.812");
+            "10.000000,-20.000000,812.000000,0.812,2");
   EXPECT_EQ(DataOut::row(r),
             "12,ok,1.500000,-2.250000,30.125000,10.000000,-20.500000,812.750000,0.480000,10,20,300,200,40,50,100,90,"
-            "10.2,20.5,30.8,41.0,51.2,61.5,71.8,82.0,0.812");
+            "10.2,20.5,30.8,41.0,51.2,61.5,71.8,82.0,0.812,2");
   FrameResult miss;
   miss.index = 3;
   miss.name = "a,b.png";  // quoted: it holds a comma
   miss.status = Status::NoTarget;
-  EXPECT_EQ(recordCsvRow(miss, kReconstructCsv), "\"a,b.png\",NoTarget,,,,,,,");
+  EXPECT_EQ(recordCsvRow(miss, kReconstructCsv), "\"a,b.png\",NoTarget,,,,,,,,");
   const std::string header = recordCsvHeader(kDataOutCsv);
   const std::string row = DataOut::row(miss);
   EXPECT_EQ(std::count(row.begin(), row.end(), ','), std::count(header.begin(), header.end(), ',') + 1);  // the name's comma

@@ -208,6 +208,56 @@ TEST(StageChain, AFarTargetOnABlackBackgroundIsFoundThroughTheNarrowWindow) {
   }
 }
 
+// A set of two targets (settings "targets", target_set.h) whose offset spots sit at 0.4 and
+// 0.6 of the radius: each frame's target is told by its print at every distance and tilt
+// of the grid, with its own pose; the settings' one target (0.5) belongs to neither and is
+// UnknownTarget; without a set the same frame is the lone target, id 0.
+TEST(StageChain, ATargetOfASetIsToldByWhereItsOffsetSpotSits) {
+  Settings s;
+  s.virtual_scene.blur_sigma_px = 0.8;
+  s.virtual_scene.noise_sigma = 2.0;
+  TargetSpec near, far;
+  near.id = 1;
+  near.name = "link 1";
+  near.geometry.spot_offset_mm = 20.0;
+  far.id = 2;
+  far.name = "link 2";
+  far.geometry.spot_offset_mm = 30.0;
+  s.targets = {near, far};
+  StageChain chain;
+  FrameResult r;
+  int told = 0;
+  for (const double z : {500.0, 900.0, 1400.0, 2000.0})
+    for (const double tilt : {0.0, 30.0, 55.0})
+      for (const TargetSpec& printed : s.targets) {
+        const Pose truth{tilt, 0.4 * tilt, 35.0 + z / 50.0, 60.0, -40.0, z};
+        SCOPED_TRACE(testing::Message() << "id " << printed.id << " at " << z << " mm, " << tilt << " deg");
+        Settings scene = s;
+        scene.target = printed.geometry;  // what the renderer draws
+        const cv::Mat grey = render(scene, truth);
+        runStageChain(s, grey, {}, TargetsToReconstruct::Best, chain, r);
+        ASSERT_EQ(r.status, Status::Ok) << statusName(r.status);
+        EXPECT_EQ(r.target_id, printed.id);
+        ASSERT_TRUE(r.pose.has_value());
+        // Seen face-on the rim's two circles are close and the pose may be the one halfway
+        // between them, within ambiguity_tolerance_deg, as for a lone target.
+        EXPECT_LT(rotationErrorDeg(truth, *r.pose), tilt == 0.0 ? 3.0 : 1.0);
+        EXPECT_LT(std::abs(r.pose->tz_mm - z), 0.01 * z);
+        told += r.target_id == printed.id;
+      }
+  EXPECT_EQ(told, 24);
+
+  const Pose truth{20, 10, 30, 50, 20, 900};
+  const cv::Mat lone = render(Settings{}, truth);  // offset spot at 0.5 of the radius
+  runStageChain(s, lone, {}, TargetsToReconstruct::Best, chain, r);
+  EXPECT_EQ(r.status, Status::UnknownTarget) << statusName(r.status);
+  EXPECT_EQ(r.target_id, -1);
+  EXPECT_FALSE(r.pose.has_value());
+  runStageChain(Settings{}, lone, {}, TargetsToReconstruct::Best, chain, r);
+  EXPECT_EQ(r.status, Status::Ok) << statusName(r.status);
+  EXPECT_EQ(r.target_id, kLoneTargetId);
+}
+
 // A far target blurred until its spots no longer show as dark paths in the binary image,
 // and a sharp white ring with a dark centre beside it: the ellipse stage finds no target
 // and ranks the ring, which holds a dark path, above the target's plain disk. The ring
