@@ -86,7 +86,7 @@ std::vector<FrameField> buildFields() {
                "the share of the rim the pose was fitted to (0..1; less where an occluder hides part of it), "
                "none without a fitted rim",
                3, kEveryOutput | kPython | kResultsText, rimSeenOf});
-  f.push_back({"target", "", "Target",
+  f.push_back({"target", "", "Target id",
                "the id of the settings' target the frame's target is (0 for the one target of \"target\", "
                "else its \"targets\" entry's), none when no target was told (UnknownTarget: a target whose "
                "offset spot codes none)",

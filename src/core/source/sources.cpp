@@ -79,10 +79,12 @@ Status VirtualSource::next(Frame& out) {
   const auto seed = static_cast<std::uint64_t>(index);
   // Its own camera, whichever source the settings say is in use.
   const CameraModel& camera = settings.camera(SourceKind::Virtual);
+  // With a set of targets, its first member: a target the set knows (target_set.h).
+  const TargetGeometry& target = settings.targets.empty() ? settings.target : settings.targets.front().geometry;
   if (content == VirtualContent::Pattern)
-    renderPattern(camera, settings.target, settings.pattern, scene, pose, out.image, seed);
+    renderPattern(camera, target, settings.pattern, scene, pose, out.image, seed);
   else
-    renderTarget(camera, settings.target, scene, pose, out.image, seed);
+    renderTarget(camera, target, scene, pose, out.image, seed);
   out.index = index;
   out.timestamp_s = static_cast<double>(index) / scene.frame_rate_hz;
   out.name.clear();

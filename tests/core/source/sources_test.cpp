@@ -146,6 +146,24 @@ TEST(VirtualSource, RendersThroughItsOwnCamera) {
   EXPECT_EQ(f.image.size(), cv::Size(320, 240));
 }
 
+// With a set of targets in the settings the Virtual source draws the set's first member, a
+// target the set knows, not the settings' one "target" (which may belong to none).
+TEST(VirtualSource, DrawsTheSetsFirstTarget) {
+  Settings settings = virtualSettings();
+  TargetSpec first;
+  first.id = 4;
+  first.geometry.spot_offset_mm = 20.0;
+  settings.targets = {first};
+  auto source = makeVirtualSource(settings);
+  Frame f;
+  ASSERT_EQ(source->next(f), Status::Ok);
+  cv::Mat expected, lone;
+  renderTarget(settings.camera(), first.geometry, settings.virtual_scene, *f.truth, expected, 0);
+  renderTarget(settings.camera(), settings.target, settings.virtual_scene, *f.truth, lone, 0);
+  EXPECT_EQ(cv::norm(f.image, expected, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(f.image, lone, cv::NORM_INF), 0.0);
+}
+
 TEST(VirtualSource, KeysFromAnotherThreadWhileRendering) {
   Settings settings = virtualSettings();
   settings.virtual_scene.motion.kind = MotionKind::Static;
