@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "cli/command.h"
 #include "core/calibration/pattern_document.h"
@@ -21,8 +22,47 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
+void writePage(const PatternPage& page, const std::string& out, const std::string& ext, double dpi) {
+  std::string content;
+  if (ext == "svg") {
+    content = patternPageSvg(page);
+  } else if (ext == "pdf") {
+    content = patternPagePdf(page);
+  } else {
+    const auto png = patternPagePng(page, dpi);
+    content.assign(png.begin(), png.end());
+  }
+  std::string error;
+  if (!writeFileAtomically(out, content, error)) throw InputError(error);
+}
+
+// --targets: every target of the settings' set on one page; --target ID: that one alone.
+int printTargets(const Args& args, const Settings& settings, const std::string& out, const std::string& ext,
+                 Paper paper, double dpi) {
+  for (const char* grid : {"pattern", "columns", "rows", "spacing-mm", "dot-diameter-mm"})
+    if (args.has(grid)) throw UsageError(std::string("--") + grid + " does not go with --targets or --target");
+  std::vector<TargetSpec> members = settings.targets;
+  if (members.empty()) members.push_back(TargetSpec{kLoneTargetId, "", settings.target});
+  if (const auto id = args.value("target")) {
+    const int wanted = args.integer("target", 0);
+    std::erase_if(members, [&](const TargetSpec& m) { return m.id != wanted; });
+    if (members.empty()) throw UsageError("--target: " + *id + " is not the id of a target in the settings");
+  }
+  PatternPage page;
+  std::string error;
+  if (!layoutTargetSheet(members, settings.pattern.card_size_mm, paper, page, error))
+    throw UsageError("InvalidPattern: " + error);
+  writePage(page, out, ext, dpi);
+  std::printf("wrote %s: %zu target%s on %s landscape, cards %g mm", out.c_str(), members.size(),
+              members.size() == 1 ? "" : "s", paperName(paper), page.rects.front().w_mm);
+  for (const TargetSpec& m : members) std::printf("; id %d offset %g mm", m.id, m.geometry.spot_offset_mm);
+  std::printf("\nprint it at actual size (100 %%, no fitting to the page) and check the 100 mm bar\n");
+  return 0;
+}
+
 int run(const Args& args) {
-  args.rejectUnknown({"out", "paper", "dpi", "pattern", "columns", "rows", "spacing-mm", "dot-diameter-mm", "config"});
+  args.rejectUnknown({"out", "paper", "dpi", "pattern", "columns", "rows", "spacing-mm", "dot-diameter-mm", "config",
+                      "targets", "target"});
   if (!args.positionals().empty()) throw UsageError("unexpected argument \"" + args.positionals().front() + "\"");
   const auto out = args.value("out");
   if (!out) throw UsageError("--out FILE is required (.pdf, .svg or .png)");
@@ -37,6 +77,7 @@ int run(const Args& args) {
   if (!(dpi >= 25.0 && dpi <= 2400.0)) throw UsageError("--dpi must be 25..2400");
 
   Settings settings = loadConfig(args);
+  if (args.has("targets") || args.has("target")) return printTargets(args, settings, *out, ext, paper, dpi);
   const std::string kindArg = args.valueOr("pattern", "thesis");
   const auto kind = parseDotGridKind(kindArg);
   if (!kind) throw UsageError("--pattern: \"" + kindArg + "\" is not thesis, symmetric-circles or asymmetric-circles");
@@ -56,17 +97,7 @@ int run(const Args& args) {
   PatternPage page;
   std::string layoutError;
   if (!layoutDotGridPage(spec, paper, page, layoutError)) throw UsageError("InvalidPattern: " + layoutError);
-  std::string content;
-  if (ext == "svg") {
-    content = patternPageSvg(page);
-  } else if (ext == "pdf") {
-    content = patternPagePdf(page);
-  } else {
-    const auto png = patternPagePng(page, dpi);
-    content.assign(png.begin(), png.end());
-  }
-  std::string error;
-  if (!writeFileAtomically(*out, content, error)) throw InputError(error);
+  writePage(page, *out, ext, dpi);
   std::printf("wrote %s: %s, %s landscape, %d x %d grid spots (%d drawn) %g mm apart, dots %g mm", out->c_str(),
               std::string(dotGridKindName(spec.kind)).c_str(), paperName(paper), page.grid_columns, page.grid_rows,
               page.grid_spots, spec.spacing_mm, dotDiameterMm(spec));
@@ -81,7 +112,8 @@ const CommandRegistration kRegistration{{
     "write the printable calibration pattern (PDF, SVG or PNG) at true scale",
     "usage: imagepro-cli pattern --out FILE.pdf|FILE.svg|FILE.png [--paper A4|Letter|A3] [--dpi N]\n"
     "         [--pattern thesis|symmetric-circles|asymmetric-circles] [--columns C] [--rows R]\n"
-    "         [--spacing-mm S] [--dot-diameter-mm D] [--config FILE]\n\n"
+    "         [--spacing-mm S] [--dot-diameter-mm D] [--config FILE]\n"
+    "       imagepro-cli pattern --out FILE --targets | --target ID [--paper P] [--config FILE]\n\n"
     "Writes a calibration pattern at true scale on a landscape page, with its parameters and a\n"
     "100 mm scale bar printed below. thesis (default): the pattern of thesis 4.3 for the\n"
     "settings' \"pattern\" and \"target\" (the options override its grid), the target on its\n"
@@ -91,8 +123,11 @@ const CommandRegistration kRegistration{{
     "that takes them is printed on the sheet (calibrate --intrinsics).\n"
     "  --out FILE    .pdf (vector), .svg (vector, mm units) or .png; written atomically\n"
     "  --paper P     A4 (default), Letter or A3\n"
-    "  --dpi N       PNG resolution, stored in the file (default 300)",
-    {},
+    "  --dpi N       PNG resolution, stored in the file (default 300)\n"
+    "  --targets     print every target of the settings' \"targets\" set on one page (the one\n"
+    "                \"target\" without a set), each on its card with its id and dimensions\n"
+    "  --target ID   print that target of the set alone",
+    {"targets"},
     run,
 }};
 

@@ -1,5 +1,5 @@
 // imagepro-cli reconstruct: the whole pipeline over images or the virtual source,
-// one pose row per frame in the CSV format of docs/conventions.md (or JSON).
+// one pose row per frame (per target of a set) in the CSV format of docs/conventions.md (or JSON).
 #include <cstdio>
 
 #include "cli/command.h"
@@ -28,6 +28,18 @@ std::string jsonRow(const FrameResult& r) {
     row += ']';
   }
   return row + "}";
+}
+
+// Every row of the frame (one per target of a set), as JSON objects separated by commas.
+std::string jsonRows(const FrameResult& r) {
+  if (!r.set_of_targets) return jsonRow(r);
+  std::string rows;
+  FrameResult row;
+  for (std::size_t k = 0; k < recordRowCount(r); ++k) {
+    recordRow(r, k, row);
+    rows += (k ? ",\n  " : "") + jsonRow(row);
+  }
+  return rows;
 }
 
 // The stream section of the settings, switched on by --stream udp://HOST:PORT; --stream-format
@@ -91,9 +103,9 @@ int run(const Args& args) {
     if (result.pose) ++reconstructed;
     const std::string frame = frameLabel(result);
     if (format == "csv")
-      std::printf("%s\n", recordCsvRow(result, csv_fields).c_str());
+      std::printf("%s\n", recordCsvRows(result, csv_fields).c_str());
     else
-      std::printf("%s\n  %s", first ? "" : ",", jsonRow(result).c_str());
+      std::printf("%s\n  %s", first ? "" : ",", jsonRows(result).c_str());
     first = false;
     if (!ok(result.status) && !source->lastError().empty())
       std::fprintf(stderr, "%s\n", frameProblem(frame, source->lastError()).c_str());

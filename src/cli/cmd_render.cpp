@@ -175,11 +175,14 @@ const CommandRegistration kRegistration{{
     "                    data/webcam-1280x720.json (--config) it is the webcam set of\n"
     "                    docs/accuracy.md\n"
     "  --occluders F --glare F --dim F   (real) the share (0..1) of stills with each effect\n"
+    "  --set             (real) every target of the settings' \"targets\" set on each still, each\n"
+    "                    at a pose of its own, its card clear of the others'; truth.csv has a\n"
+    "                    row per target drawn, its id in a last column, target\n"
     "  --seed N          the set to draw (default: the settings' virtual seed)\n\n"
     "Frames are written to a staging folder and moved in only when all are rendered, so\n"
     "an interrupted render leaves DIR as it was (or, if stopped while moving them in, no\n"
     "truth.csv): truth.csv never names frames other than the ones beside it.",
-    {"pattern", "append", "webcam"},
+    {"pattern", "append", "webcam", "set"},
     run,
 }};
 

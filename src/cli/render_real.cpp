@@ -4,15 +4,17 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "cli/render_output.h"
 #include "core/common/pose_csv.h"
 #include "core/source/real_scene_video.h"
+#include "core/source/target_set_scene.h"
 
 namespace imagepro::cli {
 
 const std::vector<std::string> kRealSceneOptions = {"backgrounds", "negatives", "hidden", "webcam", "occluders", "glare",
-                                                     "dim"};
+                                                     "dim", "set"};
 const std::vector<std::string> kVirtualOnlyOptions = {"mode",  "motion", "axis",  "amplitude",  "period",
                                                       "noise", "blur",   "clutter", "gradient", "white",
                                                       "black", "background", "rate", "pose",   "pattern",
@@ -69,6 +71,65 @@ std::string frameName(const char* stem, int i) {
   return file;
 }
 
+// A real-scene still of every member of the settings' set (--set): the first member at the
+// still's own pose, each other one at a pose of its own drawn like a still's (0.4-2.5 m,
+// tilted 0-60 deg, its card in the frame), its card's image clear of every card drawn
+// before it by a tenth of the larger card; a member that finds no such place in 200
+// draws is left out of the still (and of its truth).
+struct SetPoses {
+  std::vector<TargetGeometry> geometry;
+  std::vector<Pose> poses;
+  std::vector<int> ids;
+};
+
+cv::Rect2d cardBox(const CameraModel& cam, double card_mm, const Pose& pose) {
+  const Eigen::Matrix3d R = rotationMatrix(pose);
+  const Eigen::Vector3d T = translation(pose);
+  double u0 = 1e18, v0 = 1e18, u1 = -1e18, v1 = -1e18;
+  for (const double x : {-0.5, 0.5})
+    for (const double y : {-0.5, 0.5}) {
+      const Eigen::Vector2d p = projectIdeal(cam, R * Eigen::Vector3d(x * card_mm, y * card_mm, 0.0) + T);
+      u0 = std::min(u0, p.x());
+      v0 = std::min(v0, p.y());
+      u1 = std::max(u1, p.x());
+      v1 = std::max(v1, p.y());
+    }
+  return {u0, v0, u1 - u0, v1 - v0};
+}
+
+SetPoses setPoses(const Settings& settings, const Pose& first, std::uint64_t seed, int index) {
+  const CameraModel& cam = settings.camera();
+  const double card = settings.virtual_scene.card_size_mm;
+  SetPoses out;
+  std::vector<cv::Rect2d> boxes;
+  cv::RNG rng(0x5e75e7ULL ^ (seed * 1000003ULL + static_cast<std::uint64_t>(index)));
+  for (std::size_t m = 0; m < settings.targets.size(); ++m) {
+    std::optional<Pose> at;
+    for (int attempt = 0; attempt < (m == 0 ? 1 : 200) && !at; ++attempt) {
+      const Pose pose = m == 0 ? first
+                               : poseAlongRay(cam, Eigen::Vector2d(rng.uniform(0.0, cam.width - 1.0),
+                                                                   rng.uniform(0.0, cam.height - 1.0)),
+                                              rng.uniform(RealScenes::kMinDistanceMm, RealScenes::kMaxDistanceMm),
+                                              rng.uniform(0.0, RealScenes::kMaxTiltDeg), rng.uniform(0.0, 360.0),
+                                              rng.uniform(-180.0, 180.0));
+      if (m > 0 && !cardInFrame(cam, settings.targets[m].geometry, card, pose, 4.0)) continue;
+      const cv::Rect2d box = cardBox(cam, card, pose);
+      const bool clear = std::none_of(boxes.begin(), boxes.end(), [&](const cv::Rect2d& b) {
+        const double margin = 0.1 * std::max({b.width, b.height, box.width, box.height});
+        const cv::Rect2d grown(b.x - margin, b.y - margin, b.width + 2 * margin, b.height + 2 * margin);
+        return (grown & box).area() > 0.0;
+      });
+      if (clear) at = pose;
+    }
+    if (!at) continue;
+    boxes.push_back(cardBox(cam, card, *at));
+    out.geometry.push_back(settings.targets[m].geometry);
+    out.poses.push_back(*at);
+    out.ids.push_back(settings.targets[m].id);
+  }
+  return out;
+}
+
 }  // namespace
 
 int renderRealScenes(const Args& args, const Settings& settings, bool video) {
@@ -94,7 +155,11 @@ int renderRealScenes(const Args& args, const Settings& settings, bool video) {
                      "Debian's opencv-doc (tools/setup.sh does)");
   const RealScenes scenes(settings, std::move(photos), rigEffects(args));
 
-  RenderOutput out(*out_dir, false, poseCsvHeader(kColumns));
+  const bool set = args.has("set");
+  if (set && (video || settings.targets.empty()))
+    throw UsageError(video ? "--set applies to --scene real only"
+                           : "--set draws the settings' \"targets\" set, and these settings list none");
+  RenderOutput out(*out_dir, false, poseCsvHeader(set ? std::string(kColumns) + ",target" : std::string(kColumns)));
   const auto start = std::chrono::steady_clock::now();
   const RealSceneVideo sequence(scenes, static_cast<std::uint64_t>(seed), video ? frames : 0, hidden);
   RealSceneFrame frame;
@@ -106,6 +171,26 @@ int renderRealScenes(const Args& args, const Settings& settings, bool video) {
     if (video) {
       made = sequence.frame(i, frame, error);
       name = frameName("frame", i);
+    } else if (i < frames && set) {
+      const SetPoses members = setPoses(settings, scenes.stillPose(static_cast<std::uint64_t>(seed), i),
+                                        static_cast<std::uint64_t>(seed), i);
+      const ScenePainter painter = [&](const cv::Mat& background, const Pose&, const TargetLook& look, cv::Mat& scene) {
+        cv::Mat drawn;
+        std::vector<Pose> rest(members.poses.begin() + 1, members.poses.end());
+        std::vector<TargetGeometry> restGeometry(members.geometry.begin() + 1, members.geometry.end());
+        composeTargets(background, settings.camera(), restGeometry, look, rest, drawn);
+        composeTarget(drawn, settings.camera(), members.geometry.front(), look, members.poses.front(), scene);
+      };
+      made = scenes.still(static_cast<std::uint64_t>(seed), i, true, frame, error, painter);
+      name = frameName("frame", i);
+      if (!made) throw InputError("frame " + std::to_string(i) + ": " + error);
+      for (std::size_t m = 0; m < members.poses.size(); ++m) {
+        frame.truth = members.poses[m];
+        out.write(name, frame.image,  // the same still under each of its targets' rows
+                 
+                  poseCsvRow(name, Status::Ok, frame.truth, extraColumns(frame) + "," + std::to_string(members.ids[m])));
+      }
+      continue;
     } else if (i < frames) {
       made = scenes.still(static_cast<std::uint64_t>(seed), i, true, frame, error);
       name = frameName("frame", i);

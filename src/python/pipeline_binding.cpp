@@ -220,7 +220,25 @@ P_camera = Rz(rz) Ry(ry) Rx(rx) P_target + (tx, ty, tz); angles in degrees, leng
       .def_readonly("sampson_px", &TargetSummary::sampson_px, "mean Sampson distance of its path, pixels")
       .def_readonly("bennett_score", &TargetSummary::bennett_score)
       .def_property_readonly("bbox", [](const TargetSummary& t) { return rect(t.bbox); }, "(x, y, width, height)")
-      .def("__repr__", [](const TargetSummary& t) { return "Target(" + ellipseRepr(t.ellipse) + ")"; });
+      .def_property_readonly("status", [](const TargetSummary& t) { return std::string(statusName(t.status)); },
+                             "its own reconstruction's status (a set of targets; \"Stopped\" when not reconstructed)")
+      .def_property_readonly("target", [](const TargetSummary& t) -> std::optional<int> {
+            if (t.target_id < 0) return std::nullopt;
+            return t.target_id;
+          }, "the id of the settings' target it is, or None")
+      .def_property_readonly("pose", [](const TargetSummary& t) -> std::optional<Pose> {
+            if (!ok(t.status)) return std::nullopt;
+            return t.pose;
+          }, "its pose when its status is ok, else None")
+      .def_property_readonly("pose_in_reference", [](const TargetSummary& t) { return t.pose_in_reference; },
+                             "its pose in the reference target's frame (settings frames.reference_target), or None")
+      .def_property_readonly("pose_in_world", [](const TargetSummary& t) { return t.pose_in_world; },
+                             "its pose in the world frame of settings frames.origin, or None")
+      .def("__repr__", [](const TargetSummary& t) {
+        std::string text = "Target(" + ellipseRepr(t.ellipse);
+        if (t.target_id >= 0) text += ", id " + std::to_string(t.target_id);
+        return text + ")";
+      });
 }
 
 void bindResult(py::module_& m) {

@@ -158,13 +158,22 @@ void FrameView::paintOverlays(QPainter& painter) const {
     painter.drawPoints(points);
     painter.setRenderHint(QPainter::Antialiasing, true);
   }
-  if (p.display.feature_spots && r.reached >= ApplicationLevel::Reconstruction && r.pose) {
+  if (p.display.feature_spots && r.reached >= ApplicationLevel::Reconstruction) {
     pen.setColor(kSpots);
     painter.setPen(pen);
     const double arm = 6.0 / zoom_;
-    for (const cv::Point2f& s : r.spots) {
-      painter.drawLine(QPointF(s.x - arm, s.y), QPointF(s.x + arm, s.y));
-      painter.drawLine(QPointF(s.x, s.y - arm), QPointF(s.x, s.y + arm));
+    const auto cross = [&](const std::array<cv::Point2f, 2>& spots) {
+      for (const cv::Point2f& s : spots) {
+        painter.drawLine(QPointF(s.x - arm, s.y), QPointF(s.x + arm, s.y));
+        painter.drawLine(QPointF(s.x, s.y - arm), QPointF(s.x, s.y + arm));
+      }
+    };
+    // A set: every target with a pose its own spots; else the one target's.
+    if (r.set_of_targets) {
+      for (const TargetSummary& t : r.targets)
+        if (ok(t.status) && t.pose) cross(t.spots);
+    } else if (r.pose) {
+      cross(r.spots);
     }
   }
   paintCalibrationCheck(painter);
@@ -270,6 +279,12 @@ std::vector<FrameView::NumberLabel> FrameView::numberLabels() const {
                                                                   .arg(t.bennett_quality, 0, 'f', 0)
                                                                   .arg(t.bennett_symmetry, 0, 'f', 2)
                                                             : tr("E %1").arg(t.fit_error, 0, 'g', 3);
+    // A set's target carries its id (and its own status when it has no pose) before its numbers.
+    if (p.result.set_of_targets && (t.target_id >= 0 || t.status == Status::UnknownTarget)) {
+      QString id = t.target_id >= 0 ? tr("id %1").arg(t.target_id) : tr("no id");
+      if (!ok(t.status)) id += QStringLiteral(" ") + QString::fromUtf8(statusName(t.status).data());
+      label.text = id + QStringLiteral("  ") + label.text;
+    }
     label.box = metrics.boundingRect(label.text);
     label.box.adjust(-4, -1, 4, 1);
     // Beside the target, not on it: the spots and the rim it measured stay in sight. Below

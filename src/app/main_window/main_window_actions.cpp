@@ -115,6 +115,27 @@ void MainWindow::buildMenus() {
       ->setToolTip(tr("Lens distortion calibration from up to four images of the calibration pattern (thesis 4.6)"));
   tools->addAction(tr("Image Plane &Distance d0..."), this, [this] { showD0Dialog(*this); })
       ->setToolTip(tr("d0 from frames of the target at known distances by the iteration of thesis eq. 4.1"));
+  tools->addSeparator();
+  // The world frame (settings frames.origin, docs/conventions.md): the shown target's pose now.
+  tools->addAction(tr("Set &Origin"), this, [this] {
+    if (!latest_ || !ok(latest_->result.status) || !latest_->result.pose) {
+      showInfo(tr("Set Origin: no target pose in the frame shown; start the source and show the target first"));
+      return;
+    }
+    Settings s = binder_->model();
+    s.frames.origin_set = true;
+    s.frames.origin = *latest_->result.pose;
+    setSettings(s);
+    showInfo(tr("Origin set at target %1's pose: poses are now also given in this world frame (world_* columns)")
+                 .arg(latest_->result.target_id));
+  })->setToolTip(tr("Store the shown target's current pose as the origin of a world frame; every pose is then also "
+                    "given in it"));
+  tools->addAction(tr("&Clear Origin"), this, [this] {
+    Settings s = binder_->model();
+    s.frames.origin_set = false;
+    setSettings(s);
+    showInfo(tr("Origin cleared: poses are given in the camera frame only"));
+  });
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&Keys"), this, &MainWindow::showKeys)->setShortcut(QKeySequence::HelpContents);

@@ -60,6 +60,13 @@ QString formatResults(const DisplayPacket& packet) {
   for (std::size_t i = 0; i < r.targets.size(); ++i) {
     const TargetSummary& t = r.targets[i];
     lines << QStringLiteral("Target %1  centre %2, %3 px").arg(i + 1).arg(t.ellipse.cx, 0, 'f', 2).arg(t.ellipse.cy, 0, 'f', 2);
+    // A set's target: its id, its own status and, with a pose, its distance and tilt.
+    if (r.set_of_targets && (t.target_id >= 0 || t.status == Status::UnknownTarget)) {
+      QString told = t.target_id >= 0 ? QStringLiteral("          id %1, %2").arg(t.target_id) : QStringLiteral("          no id, %1");
+      told = told.arg(QString::fromUtf8(statusName(t.status).data()));
+      if (ok(t.status) && t.pose) told += QStringLiteral(", %1 mm away").arg(translation(*t.pose).norm(), 0, 'f', 1);
+      lines << told;
+    }
     lines << QStringLiteral("          axes %1 x %2 px, %3 deg")
                  .arg(t.ellipse.a, 0, 'f', 2)
                  .arg(t.ellipse.b, 0, 'f', 2)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/pipeline/pose_frames.h"
 #include "core/source/virtual_renderer.h"
 
 namespace imagepro {
@@ -15,11 +16,8 @@ constexpr double kRadPerDeg = M_PI / 180.0;
 }  // namespace
 
 TwoTargetMeasurement measureBetween(const Pose& a, const Pose& b) {
-  TwoTargetMeasurement m;
-  m.distance_mm = (translation(a) - translation(b)).norm();
-  const double c = rotationMatrix(a).col(2).dot(rotationMatrix(b).col(2));
-  m.angle_deg = std::acos(std::clamp(c, -1.0, 1.0)) / kRadPerDeg;
-  return m;
+  const TargetPairMeasure m = measurePair(a, b);
+  return {m.distance_mm, m.angle_deg};
 }
 
 Status measureTwoTargets(const MultiTargetResult& frame, TwoTargetMeasurement& out) {

@@ -168,6 +168,62 @@ void layoutPatternPage(const PatternGeometry& pattern, const TargetGeometry& tar
                          std::to_string(pattern.rows) + " grid."});
 }
 
+bool layoutTargetSheet(const std::vector<TargetSpec>& members, double card_size_mm, Paper paper, PatternPage& page,
+                       std::string& error) {
+  page = {};
+  paperSizeMm(paper, page.width_mm, page.height_mm);
+  if (members.empty()) {
+    error = "no target to print";
+    return false;
+  }
+  double card = card_size_mm;
+  for (const TargetSpec& m : members) card = std::max(card, 2.0 * m.geometry.radius_mm + 4.0);
+  constexpr double kLabelMm = 9.0;  // under each card: its id, name and dimensions
+  constexpr double kGapMm = 8.0;
+  const double x0 = kPageMarginMm, x1 = page.width_mm - kPageMarginMm;
+  const double y0 = kPageMarginMm, y1 = page.height_mm - kPageMarginMm - kTextBandMm;
+  const int columns = static_cast<int>((x1 - x0 + kGapMm) / (card + kGapMm));
+  const int rows = static_cast<int>((y1 - y0 + kGapMm) / (card + kLabelMm + kGapMm));
+  if (columns * rows < static_cast<int>(members.size())) {
+    error = std::to_string(members.size()) + " cards of " + g(card) + " mm do not fit on a " + paperName(paper) +
+            " page (" + std::to_string(std::max(0, columns * rows)) + " do): take a larger paper, or print each target "
+            "on its own page";
+    return false;
+  }
+  const int n = static_cast<int>(members.size());
+  const int usedColumns = std::min(columns, n);
+  const int usedRows = (n + usedColumns - 1) / usedColumns;
+  const double blockW = usedColumns * card + (usedColumns - 1) * kGapMm;
+  const double blockH = usedRows * (card + kLabelMm) + (usedRows - 1) * kGapMm;
+  const double left = 0.5 * (x0 + x1 - blockW), top = 0.5 * (y0 + y1 - blockH);
+  page.cards = members.size();
+  for (int i = 0; i < n; ++i) {
+    const double cardX = left + (i % usedColumns) * (card + kGapMm);
+    const double cardY = top + (i / usedColumns) * (card + kLabelMm + kGapMm);
+    page.rects.push_back({cardX, cardY, card, card});
+  }
+  for (int i = 0; i < n; ++i) {
+    const TargetGeometry& t = members[static_cast<std::size_t>(i)].geometry;
+    const PageRect& r = page.rects[static_cast<std::size_t>(i)];
+    const double cx = r.x_mm + 0.5 * card, cy = r.y_mm + 0.5 * card;
+    page.circles.push_back({cx, cy, t.radius_mm, false});
+    page.circles.push_back({cx, cy, t.spot_radius_mm, true});
+    page.circles.push_back({cx + t.spot_offset_mm, cy, t.spot_radius_mm, true});
+    const TargetSpec& m = members[static_cast<std::size_t>(i)];
+    page.texts.push_back({r.x_mm, r.y_mm + card + 4.5, kTextSizeMm,
+                          "id " + std::to_string(m.id) + (m.name.empty() ? "" : " " + m.name) + ": offset spot " +
+                              g(t.spot_offset_mm) + " mm (" + g(t.spot_offset_mm / t.radius_mm) + " R)"});
+    page.texts.push_back({r.x_mm, r.y_mm + card + 8.0, kTextSizeMm,
+                          "disk " + g(2 * t.radius_mm) + " mm, spots " + g(2 * t.spot_radius_mm) + " mm"});
+  }
+  addTextBand(page, {"ImagePro target set. Print at actual size (100 %, no fitting): the bar measures " +
+                         g(kScaleBarMm) + " mm.",
+                     std::to_string(n) + (n == 1 ? " target" : " targets") + " on black cards of " + g(card) +
+                         " mm; each is told by where its offset spot sits (settings \"targets\").",
+                     "Cut each card out and fix it flat; keep the cards' spots and rims clear of clamps and tape."});
+  return true;
+}
+
 bool layoutDotGridPage(const DotGridSpec& spec, Paper paper, PatternPage& page, std::string& error) {
   page = {};
   error = dotGridSpecError(spec);
@@ -217,16 +273,17 @@ std::string patternPageSvg(const PatternPage& page) {
        num(page.height_mm) + "mm\" viewBox=\"0 0 " + num(page.width_mm) + " " + num(page.height_mm) + "\">\n";
   s += "<rect x=\"0\" y=\"0\" width=\"" + num(page.width_mm) + "\" height=\"" + num(page.height_mm) +
        "\" fill=\"#ffffff\"/>\n";
-  // The card first, then the disk and every spot over it, then the bar.
+  // The cards first, then the disks and every spot over them, then the bar.
   auto rect = [&](const PageRect& r) {
     s += "<rect x=\"" + num(r.x_mm) + "\" y=\"" + num(r.y_mm) + "\" width=\"" + num(r.w_mm) + "\" height=\"" +
          num(r.h_mm) + "\" fill=\"#000000\"/>\n";
   };
-  if (!page.rects.empty()) rect(page.rects.front());
+  const std::size_t cards = std::min(page.cards, page.rects.size());
+  for (std::size_t i = 0; i < cards; ++i) rect(page.rects[i]);
   for (const PageCircle& c : page.circles)
     s += "<circle cx=\"" + num(c.x_mm) + "\" cy=\"" + num(c.y_mm) + "\" r=\"" + num(c.r_mm) + "\" fill=\"" +
          (c.black ? "#000000" : "#ffffff") + "\"/>\n";
-  for (size_t i = 1; i < page.rects.size(); ++i) rect(page.rects[i]);
+  for (std::size_t i = cards; i < page.rects.size(); ++i) rect(page.rects[i]);
   for (const PageText& t : page.texts)
     s += "<text x=\"" + num(t.x_mm) + "\" y=\"" + num(t.y_mm) + "\" font-family=\"Helvetica, Arial, sans-serif\" "
          "font-size=\"" + num(t.size_mm) + "\" fill=\"#000000\">" + xmlEscape(t.text) + "</text>\n";
@@ -241,7 +298,8 @@ std::string patternPagePdf(const PatternPage& page) {
   auto rect = [&](const PageRect& r) {
     c += "0 g " + num(r.x_mm) + " " + num(r.y_mm) + " " + num(r.w_mm) + " " + num(r.h_mm) + " re f\n";
   };
-  if (!page.rects.empty()) rect(page.rects.front());
+  const std::size_t cards = std::min(page.cards, page.rects.size());
+  for (std::size_t i = 0; i < cards; ++i) rect(page.rects[i]);
   constexpr double k = 0.5522847498307936;  // 4/3 (sqrt 2 - 1): a quarter circle as one cubic
   for (const PageCircle& e : page.circles) {
     const double x = e.x_mm, y = e.y_mm, r = e.r_mm, d = k * r;
@@ -252,7 +310,7 @@ std::string patternPagePdf(const PatternPage& page) {
     c += num(x - r) + " " + num(y - d) + " " + num(x - d) + " " + num(y - r) + " " + num(x) + " " + num(y - r) + " c ";
     c += num(x + d) + " " + num(y - r) + " " + num(x + r) + " " + num(y - d) + " " + num(x + r) + " " + num(y) + " c f\n";
   }
-  for (size_t i = 1; i < page.rects.size(); ++i) rect(page.rects[i]);
+  for (std::size_t i = cards; i < page.rects.size(); ++i) rect(page.rects[i]);
   for (const PageText& t : page.texts)  // the text matrix flips y back, so glyphs stand upright
     c += "0 g BT /F1 " + num(t.size_mm) + " Tf 1 0 0 -1 " + num(t.x_mm) + " " + num(t.y_mm) + " Tm (" +
          pdfEscape(t.text) + ") Tj ET\n";
@@ -326,9 +384,10 @@ std::vector<std::uint8_t> patternPagePng(const PatternPage& page, double dpi) {
             return in / double(kSub * kSub);
           });
   };
-  if (!page.rects.empty()) rect(page.rects.front());
+  const std::size_t cards = std::min(page.cards, page.rects.size());
+  for (std::size_t i = 0; i < cards; ++i) rect(page.rects[i]);
   for (const PageCircle& c : page.circles) circle(c);
-  for (size_t i = 1; i < page.rects.size(); ++i) rect(page.rects[i]);
+  for (std::size_t i = cards; i < page.rects.size(); ++i) rect(page.rects[i]);
   for (const PageText& t : page.texts) {
     int base = 0;
     const cv::Size unit = cv::getTextSize("H", cv::FONT_HERSHEY_SIMPLEX, 1.0, 1, &base);

@@ -16,6 +16,7 @@
 
 #include "core/calibration/dot_grid.h"
 #include "core/common/geometry.h"
+#include "core/settings/target_set.h"
 
 namespace imagepro {
 
@@ -44,6 +45,7 @@ struct PatternPage {
   int grid_spots = 0;               // grid spots on the page
   int grid_columns = 0, grid_rows = 0;  // extent of the grid on the page
   double origin_x_mm = 0, origin_y_mm = 0;  // where the pattern's (0, 0) lies on the page
+  std::size_t cards = 1;            // the first this many rects are cards, drawn under the circles
 };
 
 // Landscape page size in mm (A4 297 x 210, A3 420 x 297, Letter 279.4 x 215.9).
@@ -57,6 +59,12 @@ void layoutPatternPage(const PatternGeometry& pattern, const TargetGeometry& tar
 // whole, centred, with its description and the calibrate command that takes it printed
 // below. False with `error` when the description is wrong or the grid does not fit.
 bool layoutDotGridPage(const DotGridSpec& spec, Paper paper, PatternPage& page, std::string& error);
+
+// Targets of a set (settings "targets") at true scale, each on its black card (at least
+// `card_size_mm`) with its id, name and dimensions printed below it, in rows on one page.
+// False with `error` when they do not fit the paper.
+bool layoutTargetSheet(const std::vector<TargetSpec>& members, double card_size_mm, Paper paper, PatternPage& page,
+                       std::string& error);
 
 std::string patternPageSvg(const PatternPage& page);
 std::string patternPagePdf(const PatternPage& page);

@@ -35,6 +35,8 @@ StatusText text(Status s) {
     case Status::AmbiguousTarget: return {"AmbiguousTarget", "more than one target was found in the frame"};
     case Status::UnknownTarget:
       return {"UnknownTarget", "a target was found whose offset spot matches no target of the settings' set"};
+    case Status::DuplicateTarget:
+      return {"DuplicateTarget", "two targets in the frame carry the same id: the same print is in the scene twice"};
     case Status::SingularConic: return {"SingularConic", "the target's conic is singular"};
     case Status::SpotsNotFound: return {"SpotsNotFound", "the target's two spots were not found"};
     case Status::AmbiguousPose:

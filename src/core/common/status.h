@@ -31,6 +31,7 @@ enum class Status : std::uint8_t {
   NoTarget,
   AmbiguousTarget,
   UnknownTarget,    // a target whose offset spot codes no member of the settings' set
+  DuplicateTarget,  // two targets in the frame are coded as the same member (each gets it)
   // reconstruction
   SingularConic,
   SpotsNotFound,

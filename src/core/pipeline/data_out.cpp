@@ -68,7 +68,7 @@ DataOut::~DataOut() { close(); }
 
 std::string DataOut::header() { return recordCsvHeader(kDataOutCsv); }
 
-std::string DataOut::row(const FrameResult& r) { return recordCsvRow(r, kDataOutCsv); }
+std::string DataOut::row(const FrameResult& r) { return recordCsvRows(r, kDataOutCsv); }
 
 Status DataOut::open(const std::string& path, ExistingFile existing, std::string& error) {
   close();

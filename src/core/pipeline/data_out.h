@@ -1,5 +1,5 @@
 #pragma once
-// Data out (thesis appendix A, "dataout.txt"): one CSV row per frame in the format of
+// Data out (thesis appendix A, "dataout.txt"): one CSV row per frame (per target of a set) in the format of
 // docs/conventions.md, followed by the timestamp, the estimated (searched) and detected
 // regions and the per-stage times. Each row is flushed as it is written, so a killed
 // process loses at most the frame in flight; an existing file is never overwritten.
@@ -37,7 +37,7 @@ class DataOut {
   // to (0 or 1), and a sentence saying so for the user (empty when none).
   int lostRows() const { return lost_rows_; }
   const std::string& notice() const { return notice_; }
-  // Writes and flushes one row; false (with the file closed) when the disk refuses.
+  // Writes and flushes the frame's rows (one per target of a set, recordRowCount); false (with the file closed) when the disk refuses.
   bool write(const FrameResult& result, std::string& error);
   void close();
 

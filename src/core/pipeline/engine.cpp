@@ -1,53 +1,26 @@
 #include "core/pipeline/engine.h"
 
 #include <algorithm>
-#include <chrono>
 
-#include "core/pipeline/stage_chain.h"
+#include "core/pipeline/engine_impl.h"
+#include "core/pipeline/pose_frames.h"
 #include "core/segmentation/reduce.h"
-#include "core/tracking/tracker.h"
 
 namespace imagepro {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double microsecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::micro>(Clock::now() - start).count();
-}
 
 // The region about a single detection is searched at full size, the whole frame on its
 // reduced image (coarse search). The guess pays while it holds at most twice that image's
 // pixels (the whole frame's search also counts and reduces every pixel), or half the frame
 // without it: measured on the bench's real scenes, a larger guess at 1920 x 1080 (a near
 // target's) cost more than the whole frame's search (tracked 1,203 -> 373 frames/s).
-// The application level runs the stage that finds the target.
-bool reachesEllipse(ApplicationLevel level) {
-  return static_cast<int>(level) >= static_cast<int>(ApplicationLevel::Ellipse);
-}
-
 bool guessPays(const cv::Rect& region, cv::Size frame, const BinarizationOptions& binarization) {
   const int k = binarization.coarse_search ? coarseFactor(frame.width) : 1;
   return static_cast<double>(region.area()) <= 2.0 * static_cast<double>(frame.area()) / std::max(4, k * k);
 }
 
 }  // namespace
-
-struct Engine::Impl {
-  Settings settings;
-  RegionTracker tracker;
-  Frame frame;
-  StageChain chain;
-  double last_track_time = -1.0;
-  // The last frame's pose in a stream, which decides between the rim's two circles where
-  // the spots cannot; forgotten after a miss and on stills.
-  std::optional<Pose> last_pose;
-  // The settings' target the tracker follows (target_set.h): its size projects the region.
-  int last_target_id = -1;
-
-  void run(FrameResult& out);
-};
 
 Engine::Engine() : impl_(std::make_unique<Impl>()) {}
 Engine::Engine(const Settings& settings) : Engine() { impl_->settings = settings; }
@@ -58,6 +31,7 @@ const Settings& Engine::settings() const { return impl_->settings; }
 void Engine::resetTracking() {
   impl_->tracker.reset();
   impl_->last_pose.reset();
+  impl_->forgetTracks();
 }
 const Frame& Engine::lastFrame() const { return impl_->frame; }
 const cv::Mat& Engine::binaryImage() const { return regionBinary(impl_->chain); }
@@ -71,7 +45,7 @@ void Engine::process(const Frame& frame, FrameResult& out) {
 }
 
 Status Engine::step(FrameSource& source, FrameResult& out) {
-  const auto start = Clock::now();
+  const auto start = EngineClock::now();
   const Status grabbed = source.next(impl_->frame);
   const double grab_us = microsecondsSince(start);
   if (!ok(grabbed)) {
@@ -79,8 +53,12 @@ Status Engine::step(FrameSource& source, FrameResult& out) {
     out.index = impl_->frame.index;
     out.name = impl_->frame.name;
     out.status = grabbed;
+    out.set_of_targets = !impl_->settings.targets.empty();
     out.times[Stage::Grab] = grab_us;
-    if (grabbed != Status::EndOfStream) impl_->tracker.observeMiss();
+    if (grabbed != Status::EndOfStream) {
+      impl_->tracker.observeMiss();
+      impl_->forgetTracks();
+    }
     impl_->last_pose.reset();
     return grabbed;
   }
@@ -98,14 +76,21 @@ void Engine::Impl::run(FrameResult& out) {
   out.times = {};
 
   const cv::Mat& grey = frame.image;
+  const bool valid = !grey.empty() && grey.type() == CV_8UC1;
+  // Tracking time: the frame's timestamp, or its index for sources without a clock.
+  if (valid)
+    last_track_time = frame.timestamp_s > last_track_time ? frame.timestamp_s : static_cast<double>(frame.index);
+  const double t = last_track_time;
+  // Only a stream is tracked (thesis appendix A: camera and virtual input). Image files
+  // carry their name and are separate stills: the last one says nothing about the next.
+  const bool stream = frame.name.empty();
+  if (!settings.targets.empty()) {
+    runSet(out, stream && valid);
+    applyPoseFrames(settings.frames, out);
+    return;
+  }
   cv::Rect region;  // empty: the whole frame
-  if (!grey.empty() && grey.type() == CV_8UC1) {
-    // Tracking time: the frame's timestamp, or its index for sources without a clock.
-    const double t = frame.timestamp_s > last_track_time ? frame.timestamp_s : static_cast<double>(frame.index);
-    last_track_time = t;
-    // Only a stream is tracked (thesis appendix A: camera and virtual input). Image files
-    // carry their name and are separate stills: the last one says nothing about the next.
-    const bool stream = frame.name.empty();
+  if (valid) {
     if (!stream) {
       tracker.reset();
       last_pose.reset();
@@ -137,13 +122,14 @@ void Engine::Impl::run(FrameResult& out) {
   last_target_id = out.target_id;
 
   // The tracker learns from every frame whose ellipse stage ran, and from every failure.
-  const auto start = Clock::now();
+  const auto start = EngineClock::now();
   if (ok(out.status) && stageRan(out, ApplicationLevel::Ellipse) && !out.detected_region.empty()) {
     tracker.observe(last_track_time, cv::Rect2d(out.detected_region), out.pose);
   } else if (!ok(out.status) || stageRan(out, ApplicationLevel::Ellipse)) {
     tracker.observeMiss();
   }
   out.times[Stage::Tracking] = microsecondsSince(start);
+  applyPoseFrames(settings.frames, out);
 }
 
 }  // namespace imagepro

@@ -2,12 +2,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 #include "core/common/pose_csv.h"
+#include "core/pipeline/told_targets.h"
 
 namespace imagepro {
 
@@ -45,9 +47,24 @@ FieldValue targetIdOf(const FrameResult& r, int) {
   return r.target_id >= 0 ? number(static_cast<double>(r.target_id)) : none();
 }
 FieldValue nameOf(const FrameResult& r, int) { return r.name.empty() ? none() : text(r.name); }
+FieldValue inReferenceOf(const FrameResult& r, int k) {
+  return ok(r.status) && r.pose_in_reference ? number(poseColumnValues(*r.pose_in_reference)[static_cast<std::size_t>(k)])
+                                             : none();
+}
+FieldValue inWorldOf(const FrameResult& r, int k) {
+  return ok(r.status) && r.pose_in_world ? number(poseColumnValues(*r.pose_in_world)[static_cast<std::size_t>(k)])
+                                         : none();
+}
+FieldValue pairOf(const FrameResult& r, int k) {
+  if (!r.measured_pair) return none();
+  return number(k == 0 ? r.measured_pair->distance_mm : r.measured_pair->angle_deg);
+}
 
 constexpr std::uint16_t kCsvAndJson = kDataOutCsv | kReconstructCsv | kReconstructJson;
 constexpr std::uint16_t kEveryOutput = kCsvAndJson | kStreamJson;
+// The poses in the chosen frames and the pair's readout: reconstruct's CSV keeps its
+// columns (a pose per row); data out, the JSON, the stream and Python carry them.
+constexpr std::uint16_t kFramesOutputs = kDataOutCsv | kReconstructJson | kStreamJson | kPython;
 
 std::vector<FrameField> buildFields() {
   // Names that are built (a truth column, a stage's time) live here, for the views below.
@@ -105,6 +122,31 @@ std::vector<FrameField> buildFields() {
                "which inverse of the lens model corrected the features: none, taylor, exact, exact-wide-lens; "
                "none before the reconstruction stage",
                0, kReconstructJson | kPython | kResultsText, lensInverseOf});
+  static const std::array<std::array<std::string, 6>, 2> framedNames = [] {
+    std::array<std::array<std::string, 6>, 2> names;
+    for (std::size_t k = 0; k < 6; ++k) {
+      names[0][k] = "world_" + std::string(kPoseColumnNames[k]);
+      names[1][k] = "ref_" + std::string(kPoseColumnNames[k]);
+    }
+    return names;
+  }();
+  for (int k = 0; k < 6; ++k)
+    f.push_back({framedNames[0][static_cast<std::size_t>(k)], k < 3 ? "deg" : "mm", "",
+                 "the pose in the world frame \"Set origin\" stored (settings frames.origin); none without one",
+                 6, kFramesOutputs, inWorldOf, k});
+  for (int k = 0; k < 6; ++k)
+    f.push_back({framedNames[1][static_cast<std::size_t>(k)], k < 3 ? "deg" : "mm", "",
+                 "the pose in the reference target's frame (settings frames.reference_target); none for the "
+                 "reference itself, or when it was not found",
+                 6, kFramesOutputs, inReferenceOf, k});
+  f.push_back({"pair_distance_mm", "mm", "Pair distance",
+               "the distance between the centres of the two targets of settings frames.measured_targets, when "
+               "both were found",
+               3, kFramesOutputs | kResultsText, pairOf, 0});
+  f.push_back({"pair_angle_deg", "deg", "Pair angle",
+               "the angle between the normals of the two targets of settings frames.measured_targets, when both "
+               "were found",
+               3, kFramesOutputs | kResultsText, pairOf, 1});
   f.push_back({"name", "", "", "the file name, for file input", 0, kStreamJson, nameOf});
   return f;
 }
@@ -163,6 +205,65 @@ std::string recordCsvRow(const FrameResult& result, std::uint16_t output) {
     row += fieldCsv(f, f.value(result, f.arg));
   }
   return row;
+}
+
+std::size_t recordRowCount(const FrameResult& frame) {
+  if (!frame.set_of_targets) return 1;
+  std::size_t n = 0;
+  for (const TargetSummary& t : frame.targets) n += isToldTarget(t) ? 1 : 0;
+  return std::max<std::size_t>(n, 1);
+}
+
+void recordRow(const FrameResult& frame, std::size_t k, FrameResult& row) {
+  row.index = frame.index;
+  row.timestamp_s = frame.timestamp_s;
+  row.name = frame.name;
+  row.status = frame.status;
+  row.reached = frame.reached;
+  row.image_size = frame.image_size;
+  row.search_region = frame.search_region;
+  row.detected_region = frame.detected_region;
+  row.threshold = frame.threshold;
+  row.pose = frame.pose;
+  row.target_id = frame.target_id;
+  row.truth = frame.truth;
+  row.pose_in_reference = frame.pose_in_reference;
+  row.pose_in_world = frame.pose_in_world;
+  row.measured_pair = frame.measured_pair;
+  row.set_of_targets = frame.set_of_targets;
+  row.rim_seen = frame.rim_seen;
+  row.spot_error_px = frame.spot_error_px;
+  row.rim_error_px = frame.rim_error_px;
+  row.lens_inverse = frame.lens_inverse;
+  row.times = frame.times;
+  if (!frame.set_of_targets) return;
+  std::size_t seen = 0;
+  for (const TargetSummary& t : frame.targets) {
+    if (!isToldTarget(t) || seen++ != k) continue;
+    row.status = t.status;
+    row.pose = t.pose;
+    row.target_id = t.target_id;  // a DuplicateTarget row names the id found twice
+    row.search_region = t.search_region;
+    row.detected_region = t.bbox;
+    row.rim_seen = t.rim_seen;
+    row.spot_error_px = t.spot_error_px;
+    row.rim_error_px = t.rim_error_px;
+    row.pose_in_reference = t.pose_in_reference;
+    row.pose_in_world = t.pose_in_world;
+    return;
+  }
+}
+
+std::string recordCsvRows(const FrameResult& frame, std::uint16_t output) {
+  if (!frame.set_of_targets) return recordCsvRow(frame, output);
+  std::string rows;
+  FrameResult row;
+  for (std::size_t k = 0; k < recordRowCount(frame); ++k) {
+    recordRow(frame, k, row);
+    if (k) rows += '\n';
+    rows += recordCsvRow(row, output);
+  }
+  return rows;
 }
 
 std::string recordJsonMembers(const FrameResult& result, FrameOutput output) {

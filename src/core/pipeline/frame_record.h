@@ -49,6 +49,14 @@ std::span<const FrameField> frameFields();
 // kReconstructCsv: pass both).
 std::string recordCsvHeader(std::uint16_t output);
 std::string recordCsvRow(const FrameResult& result, std::uint16_t output);
+// A frame's output rows: with a set of targets (set_of_targets), one per target told
+// (told_targets.h), else (and when none was told) one, the frame itself. Row `k` is the
+// frame's fields with the target's own: status, pose, id, searched and detected boxes,
+// self-check and poses in the chosen frames.
+std::size_t recordRowCount(const FrameResult& frame);
+void recordRow(const FrameResult& frame, std::size_t k, FrameResult& row);
+// Every row of the frame as CSV, one per line (no newline after the last).
+std::string recordCsvRows(const FrameResult& frame, std::uint16_t output);
 // The JSON members of `output`'s fields, "key":value separated by commas, without braces:
 // a field without a value is null in the stream and left out of reconstruct's JSON.
 std::string recordJsonMembers(const FrameResult& result, FrameOutput output);

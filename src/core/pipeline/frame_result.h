@@ -42,6 +42,19 @@ struct TargetSummary {
   Status status = Status::Stopped;
   std::optional<Pose> pose;
   int target_id = -1;  // the member of the settings' set it is (target_set.h); -1: none
+  // With a set (FrameResult::set_of_targets), what FrameResult says of its one target, for
+  // this one: where it was searched for, the self-check, its spots, its pose in the
+  // reference target's frame and in the world frame (settings "frames").
+  cv::Rect search_region;
+  double rim_seen = 0.0, spot_error_px = -1.0, rim_error_px = -1.0;
+  std::array<cv::Point2f, 2> spots{};
+  std::optional<Pose> pose_in_reference, pose_in_world;
+};
+
+// The live readout between the two targets of settings frames.measured_targets.
+struct TargetPairMeasure {
+  double distance_mm = 0.0;  // between the two disks' centres
+  double angle_deg = 0.0;    // between their normals
 };
 
 struct FrameResult {
@@ -66,6 +79,13 @@ struct FrameResult {
   // could not tell them apart: AmbiguousPose, or Ok with `pose` halfway between them.
   std::optional<std::array<Pose, 2>> ambiguous_poses;
   std::optional<Pose> truth;        // virtual frames
+  // The pose in the reference target's frame and in the world frame (settings "frames",
+  // docs/conventions.md); none when that frame is not chosen, or its target not found.
+  std::optional<Pose> pose_in_reference, pose_in_world;
+  std::optional<TargetPairMeasure> measured_pair;
+  // True when the settings list a set of targets: every target told (targets, with its
+  // id) is an output row of its own, and the fields above are the shown target's.
+  bool set_of_targets = false;
   // Undistorted features the pose was computed from, for display (full-image pixels).
   std::vector<cv::Point2f> contour_points;
   std::array<cv::Point2f, 2> spots{};  // centre, offset

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 
+#include <algorithm>
 #include <bit>
 #include <cerrno>
 #include <charconv>
@@ -12,6 +13,7 @@
 #include <cstring>
 
 #include "core/pipeline/frame_record.h"
+#include "core/pipeline/told_targets.h"
 #include "core/settings/enum_names.h"
 #include "core/settings/settings.h"
 
@@ -76,7 +78,17 @@ std::string streamUrl(const StreamOptions& o) {
 
 std::string poseStreamJson(const FrameResult& r) {
   std::string out = "{" + recordJsonMembers(r, kStreamJson);
-  if (r.targets.size() > 1) {
+  if (r.set_of_targets) {
+    // Every target told, each with the record's fields: the frame's own are its shown target's.
+    out += ",\"targets\":[";
+    FrameResult row;
+    const bool told = std::any_of(r.targets.begin(), r.targets.end(), isToldTarget);  // else an empty list
+    for (std::size_t k = 0; told && k < recordRowCount(r); ++k) {
+      recordRow(r, k, row);
+      out += (k ? ",{" : "{") + recordJsonMembers(row, kStreamJson) + "}";
+    }
+    out += ']';
+  } else if (r.targets.size() > 1) {
     out += ",\"targets\":[";
     for (std::size_t i = 0; i < r.targets.size(); ++i) {
       const TargetSummary& t = r.targets[i];

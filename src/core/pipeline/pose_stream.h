@@ -25,7 +25,9 @@ bool parseStreamUrl(std::string_view url, StreamOptions& out, std::string& error
 std::string streamUrl(const StreamOptions& options);
 
 // One frame as its JSON datagram: {"frame", "timestamp_s", "status", the six pose columns
-// (null without a pose), "name" for file input, "targets" when the frame has several}.
+// (null without a pose), "name" for file input, "targets": with a set of targets every
+// target told, each with the record's fields (the frame's own are its shown target's),
+// else a status and pose per target when the frame has several}.
 std::string poseStreamJson(const FrameResult& result);
 // The pose in OpenTrack's axes: x, y, z in cm, yaw, pitch, roll in degrees (docs/streaming.md).
 std::array<double, 6> openTrackValues(const Pose& pose);

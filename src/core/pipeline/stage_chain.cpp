@@ -9,6 +9,7 @@
 #include "core/segmentation/image_buffer.h"
 #include "core/segmentation/reduce.h"
 #include "core/segmentation/threshold.h"
+#include "core/pipeline/told_targets.h"
 #include "core/settings/target_set.h"
 
 namespace imagepro {
@@ -48,6 +49,15 @@ void keepDisplayFeatures(const ReconstructionResult& r, FrameResult& out) {
   out.contour_points.clear();
   for (const Eigen::Vector2d& p : r.contour) out.contour_points.push_back(point(p));
   out.spots = {point(r.spots.centre_spot), point(r.spots.offset_spot)};
+}
+
+// The same of one target among several (TargetsToReconstruct::Every).
+void keepTargetFeatures(const ReconstructionResult& r, TargetSummary& t) {
+  t.rim_seen = r.rim_seen;
+  const bool checked = ok(r.status) || r.status == Status::AmbiguousPose || r.status == Status::PoseInconsistent;
+  t.spot_error_px = checked ? r.spot_error_px : -1.0;
+  t.rim_error_px = checked ? r.rim_error_px : -1.0;
+  t.spots = {point(r.spots.centre_spot), point(r.spots.offset_spot)};
 }
 
 // Edges, connectivity and the ellipse stage's target selection (thesis 2.4-2.6) on the
@@ -125,6 +135,9 @@ void clearPassFeatures(FrameResult& out) {
   out.contour_points.clear();
   out.rim_seen = 0.0;
   out.spot_error_px = out.rim_error_px = -1.0;
+  out.pose_in_reference.reset();
+  out.pose_in_world.reset();
+  out.measured_pair.reset();
 }
 
 // Back to an earlier pass's report; the features shown were the later pass's, so none.
@@ -207,14 +220,27 @@ Status reconstructDetection(const Settings& settings, const cv::Mat& grey, const
     named = memberCodedAs(set, d.spot_fraction);
     if (named < 0) return Status::UnknownTarget;
   }
-  // Every member (only the one named and its neighbours need to be, but a set is small):
-  // the best fit and the next.
+  // The member named and its neighbours in coding (the members a misread share would
+  // name), or every member when the share was not measured: the best fit and the next.
+  auto candidate = [&](std::size_t m) {
+    if (named < 0 || static_cast<int>(m) == named) return true;
+    const double c = codingFraction(set[static_cast<std::size_t>(named)].geometry);
+    const double mine = codingFraction(set[m].geometry);
+    for (std::size_t k = 0; k < set.size(); ++k) {  // a member between them: not a neighbour
+      const double other = codingFraction(set[k].geometry);
+      if (static_cast<int>(k) != named && k != m && (other - c) * (other - mine) < 0.0) return false;
+    }
+    return true;
+  };
   int best = -1;
   double bestError = 0.0, nextError = std::numeric_limits<double>::infinity();
   Status first = Status::SpotsNotFound;
+  bool tried = false;
   for (std::size_t m = 0; m < set.size(); ++m) {
+    if (!candidate(m)) continue;
     const Status s = as(m);
-    if (m == 0) first = s;
+    if (!tried) first = s;
+    tried = true;
     if (!givesAPose(s)) continue;
     const double e = chain.reconstruction.spot_error_px;
     if (best < 0 || e < bestError) {
@@ -252,6 +278,7 @@ void reconstructTargets(const Settings& settings, const cv::Mat& grey, TargetsTo
       TargetSummary& target = out.targets[i];
       target.status = reconstructDetection(settings, grey, chain.detections[i], out.threshold, chain, nullptr,
                                            target.target_id);
+      keepTargetFeatures(chain.reconstruction, target);
       if (!ok(target.status)) continue;
       target.pose = chain.reconstruction.pose;
       if (!out.pose) {
@@ -401,6 +428,9 @@ struct Search {
   bool whole_frame;
   TargetsToReconstruct which;
   const Pose* expected;
+  // Every target of the settings' set is sought: the passes go on until each member is
+  // told, and gather what each tells (chain.told).
+  bool collect;
 };
 
 // The frame result and the chain's buffers as a new frame finds them.
@@ -412,6 +442,7 @@ void startFrame(cv::Size imageSize, StageChain& chain, FrameResult& out) {
   out.edge_pixels = 0;
   out.paths = 0;
   out.targets.clear();
+  out.set_of_targets = false;
   clearPassFeatures(out);
   out.detected_region = {};
   out.lens_inverse = LensInverse::None;
@@ -441,7 +472,7 @@ int measureRegion(const PipelineOptions& o, const Search& search, StageChain& ch
   // absence; the stages' own views (detect, edges) keep the frame's size. A tracked
   // region is small already, and its changing size would change the reduced image's,
   // whose connectivity index would then be rebuilt on every frame.
-  int k = o.binarization.coarse_search && search.which == TargetsToReconstruct::Best &&
+  int k = o.binarization.coarse_search && (search.which == TargetsToReconstruct::Best || search.collect) &&
                   reached(o.level, ApplicationLevel::Reconstruction) && search.whole_frame
               ? coarseFactor(search.inside.width)
               : 1;
@@ -561,7 +592,41 @@ struct BetterMiss {
   }
 };
 
+// A set's targets told by the frame's passes become its targets (runStageChain).
+void reportTold(const Settings& settings, StageChain& chain, FrameResult& out) {
+  if (!chain.told.empty()) {  // else the report of the pass that said most
+    sortInSetOrder(chain.told, settings.targets);
+    std::swap(out.targets, chain.told);
+    chain.told.clear();
+  }
+  adoptShownTarget(settings, out);
+}
+
 }  // namespace
+
+void adoptShownTarget(const Settings& settings, FrameResult& out) {
+  out.set_of_targets = true;
+  const int shown = shownTarget(out.targets, settings.targets, settings.frames.shown_target);
+  clearPassFeatures(out);
+  if (shown < 0) {
+    // Nothing told: the search's failure, or, when its stages all ran (several detections,
+    // each reconstructed), the first detection's.
+    if (ok(out.status)) out.status = out.targets.empty() ? Status::NoTarget : out.targets.front().status;
+    return;
+  }
+  const TargetSummary& t = out.targets[static_cast<std::size_t>(shown)];
+  out.status = t.status;
+  if (ok(t.status)) out.pose = t.pose;
+  out.target_id = t.status == Status::DuplicateTarget ? -1 : t.target_id;
+  out.detected_region = t.bbox;
+  out.rim_seen = t.rim_seen;
+  out.spot_error_px = t.spot_error_px;
+  out.rim_error_px = t.rim_error_px;
+  out.spots = t.spots;
+  // Of the targets told only the frame's status: Ok when any member has a pose.
+  for (const TargetSummary& k : out.targets)
+    if (ok(k.status)) out.status = Status::Ok;
+}
 
 bool missedTarget(const FrameResult& out, TargetsToReconstruct which) {
   if (out.status == Status::AmbiguousTarget || out.status == Status::AmbiguousPose) return false;
@@ -583,7 +648,9 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
   const cv::Rect whole(0, 0, grey.cols, grey.rows);
   out.search_region = region.empty() ? whole : region;
   const cv::Rect inside = out.search_region & whole;
-  const Search search{grey, inside, grey(inside), inside == whole, which, expected};
+  const bool collect = which == TargetsToReconstruct::Every && !settings.targets.empty();
+  const Search search{grey, inside, grey(inside), inside == whole, which, expected, collect};
+  chain.told.clear();
 
   const int k = measureRegion(o, search, chain, out);
   if (!reached(o.level, ApplicationLevel::Threshold) || !thresholdFrame(o, search, chain, out)) return;
@@ -596,9 +663,16 @@ void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect regio
       clearPassFeatures(out);
     }
     runPass(settings, search, plan.passes[i], chain, out);
-    if (!missedTarget(out, which)) break;
+    if (collect) {
+      for (const TargetSummary& t : out.targets)
+        if (isToldTarget(t)) addToldTarget(chain.told, t);
+      if (everyMemberTold(chain.told, settings.targets)) break;
+    } else if (!missedTarget(out, which)) {
+      break;
+    }
     if (i + 1 == plan.count) miss.report(chain, out);
   }
+  if (collect) reportTold(settings, chain, out);
   moveReportedEdges(inside, chain);
   chain.region = inside;
 }

@@ -83,6 +83,7 @@ struct StageChain {
   EllipseWorkspace ellipse_ws;
   ReconstructionWorkspace reconstruction_ws;
   ReconstructionResult reconstruction;  // of the last target reconstructed
+  std::vector<TargetSummary> told;      // a set's targets told by the passes so far (told_targets.h)
 };
 
 // Whether the chain ran `stage` (its status may still be a failure).
@@ -105,6 +106,16 @@ inline bool stageRan(const FrameResult& result, ApplicationLevel stage) {
 // first each reconstructed: exactly one with a pose that fits is the target.
 void runStageChain(const Settings& settings, const cv::Mat& grey, cv::Rect region, TargetsToReconstruct which,
                    StageChain& chain, FrameResult& out, const Pose* expected = nullptr);
+
+// With TargetsToReconstruct::Every and a set of targets in the settings, the passes go on
+// until every member is told, each pass's told targets gathered (told_targets.h): out.targets
+// is then every target told, in the set's order, out.set_of_targets is true, and the frame's
+// own pose, id, box and self-check are the shown target's (adoptShownTarget).
+
+// Makes the frame's own fields those of its shown target (settings frames.shown_target, or
+// the first member told, told_targets.h) among out.targets; out.status is Ok when any
+// target has a pose. The rim's contour points are cleared (each target keeps its spots).
+void adoptShownTarget(const Settings& settings, FrameResult& out);
 
 // Whether a run (or one pass of it) missed the target: a failure after the threshold was
 // found, or, with every target reconstructed, none that reconstructed. Two targets

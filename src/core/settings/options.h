@@ -329,4 +329,16 @@ struct StreamOptions {
   bool operator==(const StreamOptions&) const = default;
 };
 
+// Poses in frames the user chooses, and the live readout between two targets
+// (settings "frames", docs/conventions.md *Frames of reference*). Ids are the set's
+// (target_set.h), or kLoneTargetId 0 for the one target without a set; -1 is none.
+struct PoseFramesOptions {
+  int reference_target = -1;  // every other target's pose is also given in this one's frame
+  int shown_target = -1;      // the target whose results the application shows; -1: the first found
+  std::array<int, 2> measured_targets{-1, -1};  // whose distance and angle are shown live
+  bool origin_set = false;    // "Set origin" stored `origin`: poses are also given in that world frame
+  Pose origin;                // the world frame's pose in the camera frame (as a target's pose)
+  bool operator==(const PoseFramesOptions&) const = default;
+};
+
 }  // namespace imagepro

@@ -84,6 +84,15 @@ void visitSettings(Visitor& v, Settings& s) {
     v.field("spot_radius_mm", t.geometry.spot_radius_mm, 1e-9, kInf);
     v.field("spot_offset_mm", t.geometry.spot_offset_mm, 1e-9, kInf);
   });
+  v.object("frames", [&] {
+    PoseFramesOptions& f = s.frames;
+    v.field("reference_target", f.reference_target, -1, std::numeric_limits<int>::max());
+    v.field("shown_target", f.shown_target, -1, std::numeric_limits<int>::max());
+    v.field("measured_targets", f.measured_targets, -1, std::numeric_limits<int>::max());
+    v.field("origin_set", f.origin_set);
+    poseGroup(v, "origin", f.origin, {"rx_deg", "ry_deg", "rz_deg", "tx_mm", "ty_mm", "tz_mm"}, -360.0, 360.0, -kInf,
+              kInf);
+  });
   v.object("pattern", [&] {
     v.field("spot_spacing_mm", s.pattern.spot_spacing_mm, 1e-9, kInf);
     v.field("spot_radius_mm", s.pattern.spot_radius_mm, 1e-9, kInf);
@@ -447,7 +456,10 @@ class Writer {
   }
 
   void field(const char* key, bool& value) { (*stack_.back())[key] = value; }
-  void field(const char* key, std::string& value) { (*stack_.back())[key] = value; }
+  // An empty text (a target's name left out) is not written: the reader takes none as empty.
+  void field(const char* key, std::string& value) {
+    if (!value.empty()) (*stack_.back())[key] = value;
+  }
   void field(const char* key, std::map<std::string, std::int64_t>& value) {
     json& object = (*stack_.back())[key] = json::object();
     for (const auto& [name, v] : value) object[name] = v;
@@ -750,6 +762,8 @@ Status settingsFromJson(std::string_view json_text, Settings& out, std::string& 
     }
     if (const std::string problem = targetSetProblem(parsed.targets); !problem.empty())
       throw SettingsKeyError("targets: " + problem);
+    if (const std::string problem = framesProblem(parsed.frames, parsed.targets); !problem.empty())
+      throw SettingsKeyError(problem);
   } catch (const SettingsKeyError& e) {
     error = e.what();
     return Status::InvalidSettings;

@@ -28,6 +28,7 @@ struct Settings {
   // Several targets told apart by their offset spots (target_set.h); empty: `target` alone.
   // Not written when empty, so a file of one target reads as before.
   std::vector<TargetSpec> targets;
+  PoseFramesOptions frames;
   PatternGeometry pattern;
   // The Virtual source: by default the card in a lit room (docs/user-manual.md 3.3), so
   // the first frames look like a camera's.

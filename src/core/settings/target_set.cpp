@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace imagepro {
 
@@ -34,6 +35,28 @@ std::string targetSetProblem(const std::vector<TargetSpec>& set) {
                " of the radius, closer than " + std::to_string(kMinCodingGap);
     }
   }
+  return {};
+}
+
+bool namesATarget(const std::vector<TargetSpec>& set, int id) {
+  if (set.empty()) return id == kLoneTargetId;
+  return std::any_of(set.begin(), set.end(), [&](const TargetSpec& t) { return t.id == id; });
+}
+
+std::string framesProblem(const PoseFramesOptions& frames, const std::vector<TargetSpec>& set) {
+  auto check = [&](const std::string& key, int id) -> std::string {
+    if (id < 0 || namesATarget(set, id)) return {};
+    return "frames." + key + ": " + std::to_string(id) + " is not the id of a target in the settings" +
+           (set.empty() ? " (without a \"targets\" set the one target is id 0)" : " (see \"targets\")");
+  };
+  for (const auto& [key, id] : {std::pair<std::string, int>{"reference_target", frames.reference_target},
+                                {"shown_target", frames.shown_target},
+                                {"measured_targets[0]", frames.measured_targets[0]},
+                                {"measured_targets[1]", frames.measured_targets[1]}})
+    if (std::string problem = check(key, id); !problem.empty()) return problem;
+  if (frames.measured_targets[0] >= 0 && frames.measured_targets[0] == frames.measured_targets[1])
+    return "frames.measured_targets: the two targets must differ (both are " +
+           std::to_string(frames.measured_targets[0]) + ")";
   return {};
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/common/geometry.h"
+#include "core/settings/options.h"
 
 namespace imagepro {
 
@@ -34,6 +35,13 @@ double codingFraction(const TargetGeometry& g);
 // two codings closer than kMinCodingGap, or an offset spot that touches the centre spot
 // or the rim.
 std::string targetSetProblem(const std::vector<TargetSpec>& set);
+
+// Whether `id` names a target: a member of `set`, or kLoneTargetId without a set.
+bool namesATarget(const std::vector<TargetSpec>& set, int id);
+
+// "" when every id of `frames` (-1: none) names a target (namesATarget); else the
+// problem naming the key and the id. Two measured targets must differ.
+std::string framesProblem(const PoseFramesOptions& frames, const std::vector<TargetSpec>& set);
 
 // The index of the member coded as `fraction` (within half kMinCodingGap), or -1.
 int memberCodedAs(const std::vector<TargetSpec>& set, double fraction);

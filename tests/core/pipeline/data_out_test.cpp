@@ -90,7 +90,7 @@ TEST(DataOut, AppendUnderAnotherHeaderIsRefused) {
   struct Case {
     std::string content, named;
   };
-  for (const Case& c : {Case{older + "\n" + "0,ok,1,2,3,4,5,6\n", "from \"target\" on"},
+  for (const Case& c : {Case{older + "\n" + "0,ok,1,2,3,4,5,6\n", "from \"pair_angle_deg\" on"},
                         Case{"precious\n", "column 1 is \"precious\" where ImagePro writes \"frame\""},
                         Case{today + ",note\n", "\"note\" and on are not written"},
                         Case{"frame,status,X", "column 3 is \"X\""}}) {

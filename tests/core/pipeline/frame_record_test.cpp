@@ -32,17 +32,25 @@ FrameResult tracked() {
   return r;
 }
 
+// The poses in the chosen frames and the pair's readout (settings "frames"), added last.
+constexpr const char* kFramed =
+    ",world_Rx_deg,world_Ry_deg,world_Rz_deg,world_Tx_mm,world_Ty_mm,world_Tz_mm,ref_Rx_deg,ref_Ry_deg,ref_Rz_deg,"
+    "ref_Tx_mm,ref_Ty_mm,ref_Tz_mm,pair_distance_mm,pair_angle_deg";
+constexpr const char* kNoFrames = ",,,,,,,,,,,,,,";
+
 // The CSVs' columns are a contract with users' scripts: these are the columns of the
-// versions before, to the character, with the fields added since at the end (`target`).
+// versions before, to the character, with the fields added since at the end (`target`,
+// then, in data out, the frames').
 TEST(FrameRecord, TheCsvColumnsAreTheContractsOnes) {
-  EXPECT_EQ(recordCsvHeader(kReconstructCsv), "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,rim_seen,target");
+  EXPECT_EQ(recordCsvHeader(kReconstructCsv),
+            "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,rim_seen,target");
   EXPECT_EQ(recordCsvHeader(kReconstructCsv | kTruthCsv),
             "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,true_Rx_deg,true_Ry_deg,true_Rz_deg,true_Tx_mm,"
             "true_Ty_mm,true_Tz_mm,rim_seen,target");
   EXPECT_EQ(DataOut::header(),
             "frame,status,Rx_deg,Ry_deg,Rz_deg,Tx_mm,Ty_mm,Tz_mm,timestamp_s,search_x,search_y,search_w,search_h,"
             "target_x,target_y,target_w,target_h,grab_us,crop_us,threshold_us,edges_us,connectivity_us,ellipse_us,"
-            "reconstruction_us,tracking_us,rim_seen,target");
+            "reconstruction_us,tracking_us,rim_seen,target" + std::string(kFramed));
 }
 
 TEST(FrameRecord, RowsHaveACellForEveryColumn) {
@@ -52,7 +60,7 @@ TEST(FrameRecord, RowsHaveACellForEveryColumn) {
             "10.000000,-20.000000,812.000000,0.812,2");
   EXPECT_EQ(DataOut::row(r),
             "12,ok,1.500000,-2.250000,30.125000,10.000000,-20.500000,812.750000,0.480000,10,20,300,200,40,50,100,90,"
-            "10.2,20.5,30.8,41.0,51.2,61.5,71.8,82.0,0.812,2");
+            "10.2,20.5,30.8,41.0,51.2,61.5,71.8,82.0,0.812,2" + std::string(kNoFrames));
   FrameResult miss;
   miss.index = 3;
   miss.name = "a,b.png";  // quoted: it holds a comma

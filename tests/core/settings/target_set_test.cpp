@@ -97,5 +97,29 @@ TEST(TargetSet, AMalformedOrAmbiguousListIsRefusedNamingIt) {
   EXPECT_NE(close.find("id 2 (base)"), std::string::npos) << close;
 }
 
+// The "frames" section: its ids must name targets of the file, and it round-trips.
+TEST(TargetSet, FramesOfReferenceNameTargetsOfTheFile) {
+  Settings s;
+  std::string error;
+  EXPECT_EQ(settingsFromJson(R"({"frames": {"reference_target": 2}})", s, error), Status::InvalidSettings);
+  EXPECT_NE(error.find("frames.reference_target: 2 is not the id"), std::string::npos) << error;
+  const std::string pair =
+      R"({"targets": [{"id": 1, "spot_offset_mm": 20}, {"id": 2, "spot_offset_mm": 30}],
+          "frames": {"reference_target": 2, "measured_targets": [1, 2], "origin_set": true,
+                     "origin": {"rx_deg": 10, "tz_mm": 900}}})";
+  ASSERT_EQ(settingsFromJson(pair, s, error), Status::Ok) << error;
+  EXPECT_EQ(s.frames.reference_target, 2);
+  EXPECT_EQ(s.frames.measured_targets[1], 2);
+  EXPECT_TRUE(s.frames.origin_set);
+  EXPECT_DOUBLE_EQ(s.frames.origin.tz_mm, 900.0);
+  Settings back;
+  ASSERT_EQ(settingsFromJson(settingsToJson(s), back, error), Status::Ok) << error;
+  EXPECT_EQ(back.frames.reference_target, 2);
+  EXPECT_EQ(back.frames.measured_targets, s.frames.measured_targets);
+  EXPECT_TRUE(back.frames.origin_set);
+  EXPECT_DOUBLE_EQ(back.frames.origin.rx_deg, 10.0);
+  EXPECT_EQ(settingsFromJson(R"({"frames": {"measured_targets": [1]}})", s, error), Status::InvalidSettings);
+}
+
 }  // namespace
 }  // namespace imagepro
