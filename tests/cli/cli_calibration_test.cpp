@@ -363,5 +363,36 @@ TEST(CliPattern, BadArguments) {
   EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
 }
 
+// A set of targets at true scale: the whole set on one page, or one member alone; each
+// card carries its id and offset; a set that does not fit, or an id that is none, is refused.
+TEST(CliPattern, TheTargetsOfASetWithTheirIds) {
+  const fs::path dir = freshDir("cli_pattern_targets");
+  const fs::path config = dir / "set.json";
+  std::ofstream(config) << R"({"targets": [{"id": 1, "name": "arm", "spot_offset_mm": 20},
+                                           {"id": 2, "spot_offset_mm": 30}]})";
+  const fs::path both = dir / "both.svg", one = dir / "one.svg";
+  CliRun r = cli("pattern --config " + config.string() + " --targets --out " + both.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string svg = readText(both);
+  EXPECT_NE(svg.find("id 1 arm: offset spot 20 mm (0.4 R)"), std::string::npos);
+  EXPECT_NE(svg.find("id 2: offset spot 30 mm (0.6 R)"), std::string::npos);
+  EXPECT_NE(svg.find("r=\"50\" fill=\"#ffffff\""), std::string::npos) << "the disk at true scale";
+  EXPECT_NE(svg.find("width=\"130\" height=\"130\""), std::string::npos) << "the card of today's target";
+  r = cli("pattern --config " + config.string() + " --target 2 --out " + one.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(readText(one).find("id 1"), std::string::npos);
+  EXPECT_NE(readText(one).find("id 2"), std::string::npos);
+  r = cli("pattern --config " + config.string() + " --target 7 --out " + one.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("7 is not the id"), std::string::npos) << r.err;
+  std::ofstream(config) << R"({"targets": [{"id": 1, "spot_offset_mm": 12, "spot_radius_mm": 4},
+                                           {"id": 2, "spot_offset_mm": 21, "spot_radius_mm": 4},
+                                           {"id": 3, "spot_offset_mm": 30, "spot_radius_mm": 4},
+                                           {"id": 4, "spot_offset_mm": 39, "spot_radius_mm": 4}]})";
+  r = cli("pattern --config " + config.string() + " --targets --out " + (dir / "four.svg").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("4 cards of 130 mm do not fit on a A4 page (2 do)"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace imagepro

@@ -179,15 +179,15 @@ bool layoutTargetSheet(const std::vector<TargetSpec>& members, double card_size_
   double card = card_size_mm;
   for (const TargetSpec& m : members) card = std::max(card, 2.0 * m.geometry.radius_mm + 4.0);
   constexpr double kLabelMm = 9.0;  // under each card: its id, name and dimensions
-  constexpr double kGapMm = 8.0;
+  constexpr double kGapMm = 4.0;
   const double x0 = kPageMarginMm, x1 = page.width_mm - kPageMarginMm;
   const double y0 = kPageMarginMm, y1 = page.height_mm - kPageMarginMm - kTextBandMm;
   const int columns = static_cast<int>((x1 - x0 + kGapMm) / (card + kGapMm));
   const int rows = static_cast<int>((y1 - y0 + kGapMm) / (card + kLabelMm + kGapMm));
   if (columns * rows < static_cast<int>(members.size())) {
     error = std::to_string(members.size()) + " cards of " + g(card) + " mm do not fit on a " + paperName(paper) +
-            " page (" + std::to_string(std::max(0, columns * rows)) + " do): take a larger paper, or print each target "
-            "on its own page";
+            " page (" + std::to_string(std::max(0, columns * rows)) + " do): print each target on its own page "
+            "(--target ID), or on a larger paper";
     return false;
   }
   const int n = static_cast<int>(members.size());
