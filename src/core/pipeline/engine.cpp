@@ -26,7 +26,10 @@ Engine::Engine() : impl_(std::make_unique<Impl>()) {}
 Engine::Engine(const Settings& settings) : Engine() { impl_->settings = settings; }
 Engine::~Engine() = default;
 
-void Engine::setSettings(const Settings& settings) { impl_->settings = settings; }
+void Engine::setSettings(const Settings& settings) {
+  impl_->settings = settings;
+  impl_->members_stale = true;
+}
 const Settings& Engine::settings() const { return impl_->settings; }
 void Engine::resetTracking() {
   impl_->tracker.reset();

@@ -28,6 +28,10 @@ struct MemberTrack {
   RegionTracker tracker;
   std::optional<Pose> last_pose;  // decides between the rim's two circles, as the lone target's
   bool found = false;             // in the last frame
+  // The settings with this member as the set's only one: its region is searched for it
+  // alone, its coding only and one reconstruction (another member there is UnknownTarget,
+  // and the whole frame is searched).
+  Settings alone;
 };
 
 // With a set, the whole frame is searched on this cadence even while every member is
@@ -54,6 +58,7 @@ struct Engine::Impl {
   cv::Mat masked;                      // that frame
   std::vector<TargetSummary> told;     // the frame's targets told so far
   int frames_since_whole_search = 0;
+  bool members_stale = true;  // the settings changed: each member's `alone` is rebuilt
 
   void run(FrameResult& out);
   // The frame with a set of targets: `stream` tells a tracked stream from stills.

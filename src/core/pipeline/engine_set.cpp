@@ -96,6 +96,13 @@ void Engine::Impl::runSet(FrameResult& out, bool stream) {
     members.assign(settings.targets.size(), MemberTrack{});
     for (std::size_t i = 0; i < members.size(); ++i) members[i].id = settings.targets[i].id;
   }
+  if (!same || members_stale) {
+    for (std::size_t i = 0; i < members.size(); ++i) {
+      members[i].alone = settings;
+      members[i].alone.targets = {settings.targets[i]};
+    }
+    members_stale = false;
+  }
   const bool tracked = stream && reachesEllipse(o.level);
   if (!tracked) forgetTracks();
 
@@ -109,7 +116,7 @@ void Engine::Impl::runSet(FrameResult& out, bool stream) {
                                            geometryOf(settings.targets, m.id, settings.target), last_track_time,
                                            grey.size());
     if (!region) continue;
-    runStageChain(settings, grey, *region, TargetsToReconstruct::Best, chain, search,
+    runStageChain(m.alone, grey, *region, TargetsToReconstruct::Best, chain, search,
                   m.last_pose ? &*m.last_pose : nullptr);
     addTimes(search.times, spent);
     searched = searchedAny ? (searched | *region) : *region;
