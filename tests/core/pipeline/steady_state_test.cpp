@@ -12,6 +12,7 @@
 #include "cli/allocation_counter.h"
 #include "core/pipeline/engine.h"
 #include "core/source/bench_scene.h"
+#include "core/source/target_set_scene.h"
 
 namespace imagepro {
 namespace {
@@ -96,6 +97,39 @@ TEST(SteadyStateErrors, LostAndEmptyFramesAllocateNothing) {
   s.pipeline.tracking.mode = TrackingMode::Corners2D;
   const Counted c = countSteadyState(s, frames);
   EXPECT_LT(c.found, static_cast<int>(frames.size()));
+  EXPECT_EQ(c.allocations, 0u);
+}
+
+// A set of four targets, each tracked in its own region, the whole frame searched on its
+// cadence: the set's loop allocates nothing either.
+TEST(SteadyStateSet, FourTargetsAllocateNothing) {
+  if (!cli::allocationCountingAvailable()) GTEST_SKIP() << kNoCounting;
+  cv::setNumThreads(1);
+  Settings s;
+  s.pipeline.tracking.mode = TrackingMode::Corners2D;
+  std::vector<TargetGeometry> geometry;
+  for (int i = 0; i < 4; ++i) {
+    TargetSpec t;
+    t.id = i + 1;
+    t.geometry.spot_radius_mm = 3.0;
+    t.geometry.spot_offset_mm = 10.0 + 10.0 * i;
+    s.targets.push_back(t);
+    geometry.push_back(t.geometry);
+  }
+  const cv::Mat background(s.camera().height, s.camera().width, CV_8UC1, cv::Scalar(140));
+  std::vector<Frame> frames;
+  for (int k = 0; k < kFrames; ++k) {
+    std::vector<Pose> poses;
+    for (int i = 0; i < 4; ++i)
+      poses.push_back(Pose{15.0, 10.0, 4.0 * k, (i % 2 ? 170.0 : -170.0) + 2.0 * k, (i / 2 ? 120.0 : -120.0), 1200.0});
+    Frame f;
+    composeTargets(background, s.camera(), geometry, TargetLook{}, poses, f.image);
+    f.index = k;
+    f.timestamp_s = k / 30.0;
+    frames.push_back(f);
+  }
+  const Counted c = countSteadyState(s, frames);
+  EXPECT_EQ(c.found, kFrames);
   EXPECT_EQ(c.allocations, 0u);
 }
 
