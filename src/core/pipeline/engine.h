@@ -2,7 +2,9 @@
 // The frame loop's one object (thesis figure 5.1): grab -> crop to the tracked region
 // (+ histogram) -> threshold -> edges -> connectivity -> ellipse detection -> crop
 // target + re-threshold -> features -> distortion correction -> 3D reconstruction
-// -> tracker. Used unchanged by the GUI's worker thread and by the CLI.
+// -> tracker. Used unchanged by the GUI's worker thread and by the CLI. With a set of
+// targets in the settings (target_set.h) every member is followed, one tracker each
+// (engine_set.cpp), and the frame result lists every target told.
 // Settings replaced with setSettings() take effect at the next frame; the
 // application level stops a frame after any stage. Nothing here throws: every
 // outcome is a Status in the FrameResult, and the next frame is processed as usual.
