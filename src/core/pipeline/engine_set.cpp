@@ -51,15 +51,18 @@ constexpr double kCardOverRimBox = 1.6;
 void Engine::Impl::searchBehindTold(const cv::Mat& grey, StageTimes& spent) {
   // The whole-frame search with every target reconstructed skips what only the lone
   // target's search does (the ellipse stage's runners-up, a rim drawn from its spots), so a
-  // far, blurred target beside a clear one is missed there; with the clear ones hidden under
-  // the frame's mean grey, the lone target's search finds it.
+  // far, blurred target beside a clear one, or alone, is missed there; with the members
+  // told hidden under the frame's mean grey, the lone target's search finds it.
   const int missing = static_cast<int>(std::count_if(settings.targets.begin(), settings.targets.end(),
                                                      [&](const TargetSpec& m) { return !memberTold(told, m.id); }));
-  for (int attempt = 0; attempt < missing && !told.empty(); ++attempt) {
+  for (int attempt = 0; attempt < missing; ++attempt) {
     grey.copyTo(masked);
     const auto fill = static_cast<std::uint8_t>(cv::mean(grey)[0]);
     const cv::Rect frame(0, 0, grey.cols, grey.rows);
     for (const TargetSummary& t : told) {
+      // Only members told: a print the search could not tell (UnknownTarget) is searched
+      // again, and the lone target's search may tell it.
+      if (t.target_id < 0 || t.status == Status::UnknownTarget || t.status == Status::DuplicateTarget) continue;
       const double w = kCardOverRimBox * t.bbox.width, h = kCardOverRimBox * t.bbox.height;
       const cv::Rect card(static_cast<int>(t.ellipse.cx - 0.5 * w), static_cast<int>(t.ellipse.cy - 0.5 * h),
                           static_cast<int>(w) + 1, static_cast<int>(h) + 1);

@@ -192,7 +192,7 @@ bool givesAPose(Status s) { return s == Status::Ok || s == Status::AmbiguousPose
 // Detection `d` reconstructed as the member of the settings' set it is (target_set.h),
 // its result in chain.reconstruction and the member's id in `id` (-1: none). Without a set,
 // as the settings' one target. With one, as the member that the detection's measured
-// coding names (UnknownTarget when it names none), or, when the detection did not see the
+// coding names (UnknownTarget when it names none but a target so coded fits the image), or, when the detection did not see the
 // spots (the reconstruction's own search finds them), as the member whose pose fits the
 // spots best. Either way the member's pose must fit the spots clearly better than any
 // other member's (kClearlyOtherMember): a target printed between two members' codings
@@ -218,7 +218,16 @@ Status reconstructDetection(const Settings& settings, const cv::Mat& grey, const
   int named = -1;
   if (d.spots_found) {
     named = memberCodedAs(set, d.spot_fraction);
-    if (named < 0) return Status::UnknownTarget;
+    if (named < 0) {
+      // A print of no member only when it is a target at all: its pose, as the target its
+      // measured share describes, fits the image. A photograph's ring with two dark marks
+      // in it is no target, and says why (SpotsNotFound, PoseInconsistent ...).
+      config.target = set.front().geometry;
+      config.target.spot_offset_mm = d.spot_fraction * config.target.radius_mm;
+      const Status s = reconstructTarget(config, grey, d.ellipse, threshold, chain.reconstruction_ws,
+                                         chain.reconstruction, expected, detectedSpots(d));
+      return givesAPose(s) ? Status::UnknownTarget : s;
+    }
   }
   // The member named and its neighbours in coding (the members a misread share would
   // name), or every member when the share was not measured: the best fit and the next.
