@@ -8,7 +8,10 @@
 // set stops changing (at most six rounds); a point left out in one round comes back in the
 // next if the new fit passes near it. On a clean rim every point stays (the band is wider
 // than the sub-pixel points' scatter), so the fit is the plain one, at the cost of one pass
-// over the points' distances.
+// over the points' distances. The band's floor is a third of a pixel: the sub-pixel points
+// of a blurred, noisy rim scatter by a tenth, and an occluder's edge within 0.6 px of a far
+// rim (kept by a floor of 0.6 px) turned the pose of a target seen nearly along its axis to
+// the wrong one of the rim's two circles (docs/reconstruction.md).
 //
 // The share of the rim seen: of kRimArcs equal arcs of the fitted ellipse (by the eccentric
 // angle), those that hold a kept point; an occluded arc holds none (no crossing was found
@@ -23,7 +26,7 @@
 
 namespace imagepro {
 
-inline constexpr double kMinRimBandPx = 0.6;
+inline constexpr double kMinRimBandPx = 0.3;
 inline constexpr double kRimSigmas = 3.0;
 inline constexpr int kRimArcs = 32;
 
