@@ -28,6 +28,13 @@ constexpr std::size_t kMaxProbes = 64;
 constexpr double kSharpEdgeSigmaPx = 0.8;  // below: the area estimate; above: the mid-level crossing
 constexpr double kMaxMovePx = 1.5;         // a point the model would move further keeps its place
 constexpr double kOutlierSigmas = 3.0;
+// A crossing whose own plateaus (the probes either side) lie further than this share of
+// the rim's contrast from the planes is not the paper-to-card edge: a clamp or tape lying
+// over the card beside the rim (its grey for the card's black), or a glare on the paper
+// beside it. Its point is left out. The planes' mid-level would place it off the rim by a
+// fraction of a pixel on one arc: within the rim fit's band, yet enough to turn a target
+// seen nearly along its axis to the rim's other circle (docs/reconstruction.md).
+constexpr double kPlateauDisagreement = 0.35;
 
 double medianOf(std::vector<double>& v) {
   const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
@@ -173,18 +180,16 @@ RimEdgeFit modelRimEdge(const cv::Mat& grey, const Ellipse& detected, FeatureWor
   // 4. Then out by the blur's shrink of a curved edge, t' S t / (2 rho) with t the rim's
   // tangent (the spread along the edge is what carries light round the curve), along the
   // point's own line; a point the model could not place again is moved all the same.
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const RimCrossing& c = crossings[i];
+  auto placePoint = [&](std::size_t i, const RimCrossing& c, const PixelLine& line, bool levels, double dark,
+                        double contrast) {
     // In terms of the gradient g (no square root per point): the spread across the edge is
     // g' S g / |g|^2, along it t' S t / |g|^2, the line's cosine to the normal g_line / |g|.
     const Eigen::Vector2d g = gradientAt(points[i]);
     const double g2 = g.squaredNorm(), gLine = c.row ? g.x() : g.y();
-    if (!(g2 > 0.0)) continue;
+    if (!(g2 > 0.0)) return;
     const Eigen::Vector2d t(-g.y(), g.x());
     double& coordinate = along(points[i], c.row);
-    double dark, contrast;
-    if (levelsAt(points[i], dark, contrast)) {
-      const PixelLine line = lineOf(grey, c);
+    if (levels) {
       const double across2 = g.dot(blur * g) / g2;
       double at = coordinate;
       bool found = true;
@@ -226,7 +231,35 @@ RimEdgeFit modelRimEdge(const cv::Mat& grey, const Ellipse& detected, FeatureWor
       const double tHt = std::abs(form.P * t.x() * t.x() + 2.0 * form.Q * t.x() * t.y() + form.R * t.y() * t.y());
       coordinate += 0.5 * t.dot(blur * t) * tHt / (g2 * g2 * gLine);
     }
+  };
+  // First, a crossing whose own plateaus (the probes either side) stray from the planes is
+  // left out (kPlateauDisagreement): the rest are kept in order.
+  const double plateauLimit = kPlateauDisagreement * (brightPlane[0] - darkPlane[0]);
+  std::vector<RimCrossing>& kept = ws.rim_crossings;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const RimCrossing c = crossings[i];  // a copy: kept[n] below may be this very entry
+    double dark = 0.0, contrast = 0.0;
+    const bool levels = levelsAt(points[i], dark, contrast);
+    const PixelLine line = lineOf(grey, c);
+    if (levels) {
+      const double at = c.row ? points[i].x() : points[i].y();
+      double o1, o2, i1, i2;
+      if (line.interp(at - c.inwards * kProbeNearPx, o1) && line.interp(at - c.inwards * kProbeFarPx, o2) &&
+          line.interp(at + c.inwards * kProbeNearPx, i1) && line.interp(at + c.inwards * kProbeFarPx, i2) &&
+          (std::abs(0.5 * (o1 + o2) - dark) > plateauLimit ||
+           std::abs(0.5 * (i1 + i2) - dark - contrast) > plateauLimit)) {
+        ++fit.left_out;
+        continue;
+      }
+    }
+    placePoint(i, c, line, levels, dark, contrast);
+    points[n] = points[i];
+    kept[n] = c;
+    ++n;
   }
+  points.resize(n);
+  kept.resize(n);
 
   fit.fitted = true;
   fit.dark = darkPlane[0];

@@ -13,6 +13,10 @@
 //  2. estimates the blur as a covariance S (motion blur spreads along one direction) from
 //     the profile's steepest rise at the crossings, each giving the spread across the edge,
 //     n' S n;
+//  then leaves out every crossing whose own plateaus stray from the planes by over 35 % of
+//  the contrast: beside a clamp or tape lying over the card, or a glare on the paper, the
+//  crossing is not the paper-to-card edge, and the planes' mid-level would place it off
+//  the rim;
 //  3. places every point again on its own row or column: where the profile crosses the
 //     planes' mid-level, or where the edge is sharp across (below 0.8 px, where linear
 //     interpolation between two pixels errs) by the area under the profile over a window
@@ -36,10 +40,12 @@ struct RimEdgeFit {
   double dark = 0.0, bright = 0.0;  // the planes' levels at the rim's centre
   Eigen::Matrix2d blur_covariance = Eigen::Matrix2d::Zero();  // px^2
   double blur_sigma_px = 0.0;  // sqrt(trace / 2): the spread of an isotropic blur
-  int moved = 0;  // points re-placed (the rest kept their first position)
+  int moved = 0;     // points re-placed (the rest kept their first position)
+  int left_out = 0;  // points beside an occluder or a glare, removed from `points`
 };
 
-// Re-places `points` (one per `ws.rim_crossings` entry, in order) on the grey frame.
+// Re-places `points` (one per `ws.rim_crossings` entry, in order) on the grey frame, and
+// removes from both those beside an occluder or a glare.
 RimEdgeFit modelRimEdge(const cv::Mat& grey, const Ellipse& detected, FeatureWorkspace& ws,
                         std::vector<Eigen::Vector2d>& points);
 
