@@ -143,6 +143,7 @@ class SettingsFileTest : public QObject {
   void aRenamedKeyLoadsWithAWarning();
   void unreadableFileIsAnError();
   void windowLayoutIsRemembered();
+  void targetSetMenuChoosesTheFrames();
  private:
   std::unique_ptr<MainWindow> window_;
 };

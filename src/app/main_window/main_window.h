@@ -17,6 +17,7 @@
 
 class QAction;
 class QLabel;
+class QMenu;
 class QTimer;
 
 namespace imagepro::app {
@@ -101,6 +102,9 @@ class MainWindow : public QMainWindow {
   void buildResultsArea();
   void buildDocks();
   void buildMenus();
+  // Tools > Targets of the Set: the shown target, the reference target and the measured
+  // pair (settings frames) offered from the settings' set each time the menu opens.
+  void fillTargetSetMenu(QMenu& menu);
   void buildStatusBar();
   void connectWorker();
   void restoreLayout();

@@ -1,5 +1,6 @@
 // MainWindow: menus, file dialogs, settings files, Data Out and Screenshot.
 #include <QAction>
+#include <QActionGroup>
 #include <QApplication>
 #include <QDateTime>
 #include <QDockWidget>
@@ -12,6 +13,8 @@
 #include <QPushButton>
 #include <QSettings>
 #include <QStringList>
+
+#include <functional>
 
 #include "app/analysis/analysis_window.h"
 #include "app/calibration_wizard/calibration_wizard.h"
@@ -137,6 +140,11 @@ void MainWindow::buildMenus() {
     showInfo(tr("Origin cleared: poses are given in the camera frame only"));
   });
 
+  QMenu* set = tools->addMenu(tr("&Targets of the Set"));
+  set->setObjectName(QStringLiteral("targetSetMenu"));
+  set->setToolTipsVisible(true);
+  connect(set, &QMenu::aboutToShow, this, [this, set] { fillTargetSetMenu(*set); });
+
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&Keys"), this, &MainWindow::showKeys)->setShortcut(QKeySequence::HelpContents);
   help->addAction(tr("&About ImagePro"), this, [this] {
@@ -145,6 +153,71 @@ void MainWindow::buildMenus() {
                           "a white disk with two black spots, found and reconstructed in every frame.</p>")
                            .arg(QApplication::applicationVersion()));
   });
+}
+
+void MainWindow::fillTargetSetMenu(QMenu& menu) {
+  menu.clear();
+  const Settings& s = binder_->model();
+  if (s.targets.empty()) {
+    menu.addAction(tr("No set of targets in the settings (its \"targets\" list)"))->setEnabled(false);
+    return;
+  }
+  auto label = [](const TargetSpec& t) {
+    return t.name.empty() ? tr("Target %1").arg(t.id) : tr("Target %1, %2").arg(t.id).arg(QString::fromStdString(t.name));
+  };
+  // One checkable entry of a submenu: choosing it changes the settings' frames live.
+  auto entry = [this](QMenu* sub, QActionGroup* group, const QString& name, const QString& text, bool checked,
+                      std::function<void(PoseFramesOptions&)> apply, const QString& done) {
+    QAction* a = sub->addAction(text);
+    a->setObjectName(name);
+    a->setCheckable(true);
+    a->setChecked(checked);
+    group->addAction(a);
+    connect(a, &QAction::triggered, this, [this, apply, done] {
+      Settings changed = binder_->model();
+      apply(changed.frames);
+      setSettings(changed);
+      showInfo(done);
+    });
+  };
+  const PoseFramesOptions& f = s.frames;
+
+  QMenu* shown = menu.addMenu(tr("&Shown Target"));
+  shown->setToolTip(tr("The target whose pose the results, the plots and the frame's own outputs follow"));
+  auto* shownGroup = new QActionGroup(shown);
+  entry(shown, shownGroup, QStringLiteral("shownTarget_first"), tr("The First Found"), f.shown_target < 0,
+        [](PoseFramesOptions& o) { o.shown_target = -1; }, tr("Shown target: the first target found"));
+  for (const TargetSpec& t : s.targets)
+    entry(shown, shownGroup, QStringLiteral("shownTarget_%1").arg(t.id), label(t), f.shown_target == t.id,
+          [id = t.id](PoseFramesOptions& o) { o.shown_target = id; },
+          tr("Shown target: %1; the results and plots follow it").arg(label(t)));
+
+  QMenu* reference = menu.addMenu(tr("&Reference Target"));
+  reference->setToolTip(tr("Every other target's pose is also given in this target's frame (ref_* columns)"));
+  auto* referenceGroup = new QActionGroup(reference);
+  entry(reference, referenceGroup, QStringLiteral("referenceTarget_none"), tr("None: the Camera Frame Only"),
+        f.reference_target < 0, [](PoseFramesOptions& o) { o.reference_target = -1; },
+        tr("Reference target: none; poses are given in the camera frame"));
+  for (const TargetSpec& t : s.targets)
+    entry(reference, referenceGroup, QStringLiteral("referenceTarget_%1").arg(t.id), label(t),
+          f.reference_target == t.id, [id = t.id](PoseFramesOptions& o) { o.reference_target = id; },
+          tr("Reference target: %1; the others' poses are also given in its frame").arg(label(t)));
+
+  QMenu* pair = menu.addMenu(tr("&Measured Pair"));
+  pair->setToolTip(tr("The distance and angle between two targets, shown live (pair_distance_mm, pair_angle_deg)"));
+  auto* pairGroup = new QActionGroup(pair);
+  entry(pair, pairGroup, QStringLiteral("measuredPair_none"), tr("None"), f.measured_targets[0] < 0,
+        [](PoseFramesOptions& o) { o.measured_targets = {-1, -1}; }, tr("Measured pair: none"));
+  for (std::size_t i = 0; i < s.targets.size(); ++i)
+    for (std::size_t j = i + 1; j < s.targets.size(); ++j) {
+      const TargetSpec &a = s.targets[i], &b = s.targets[j];
+      const bool on = (f.measured_targets[0] == a.id && f.measured_targets[1] == b.id) ||
+                      (f.measured_targets[0] == b.id && f.measured_targets[1] == a.id);
+      entry(pair, pairGroup, QStringLiteral("measuredPair_%1_%2").arg(a.id).arg(b.id),
+            tr("%1 and %2").arg(label(a), label(b)), on,
+            [ia = a.id, ib = b.id](PoseFramesOptions& o) { o.measured_targets = {ia, ib}; },
+            tr("Measured pair: %1 and %2; their distance and angle are shown live").arg(label(a), label(b)));
+    }
 }
 
 void MainWindow::showKeys() {

@@ -5,6 +5,7 @@
 #include <QFile>
 #include <QDoubleSpinBox>
 #include <QSpinBox>
+#include <QMenu>
 #include <QTest>
 
 #include "app/panels/collapsible_group.h"
@@ -164,6 +165,50 @@ void SettingsFileTest::windowLayoutIsRemembered() {
   again.findChild<QDockWidget*>(QStringLiteral("plotDock"))->show();
   for (CollapsibleGroup* g : again.controlPanel()->groups()) g->setExpanded(true);
   again.close();
+}
+
+// Tools > Targets of the Set offers the settings' set and changes its frames live: the
+// shown target, the reference target and the measured pair; without a set it says so.
+void SettingsFileTest::targetSetMenuChoosesTheFrames() {
+  MainWindow& w = *window_;
+  auto* menu = w.findChild<QMenu*>(QStringLiteral("targetSetMenu"));
+  QVERIFY(menu);
+  emit menu->aboutToShow();
+  QCOMPARE(menu->actions().size(), 1);
+  QVERIFY(!menu->actions().front()->isEnabled());
+
+  Settings s = w.settings();
+  TargetGeometry near = s.target, far = s.target;
+  near.spot_offset_mm = 20.0;
+  far.spot_offset_mm = 30.0;
+  s.targets = {TargetSpec{1, "arm", near}, TargetSpec{2, "", far}};
+  w.setSettings(s);
+  emit menu->aboutToShow();
+  auto trigger = [&](const char* name) {
+    auto* a = w.findChild<QAction*>(QString::fromLatin1(name));
+    QVERIFY2(a, name);
+    a->trigger();
+  };
+  QVERIFY(w.findChild<QAction*>(QStringLiteral("shownTarget_first"))->isChecked());
+  trigger("shownTarget_2");
+  QCOMPARE(w.settings().frames.shown_target, 2);
+  trigger("referenceTarget_1");
+  QCOMPARE(w.settings().frames.reference_target, 1);
+  trigger("measuredPair_1_2");
+  QCOMPARE(w.settings().frames.measured_targets[0], 1);
+  QCOMPARE(w.settings().frames.measured_targets[1], 2);
+  QVERIFY(waitForApplied(w, [](const Settings& a) { return a.frames.shown_target == 2 && a.frames.reference_target == 1; }));
+
+  // Opened again, the menu shows the choices made; the first found and none undo them.
+  emit menu->aboutToShow();
+  QVERIFY(w.findChild<QAction*>(QStringLiteral("shownTarget_2"))->isChecked());
+  QVERIFY(!w.findChild<QAction*>(QStringLiteral("shownTarget_first"))->isChecked());
+  trigger("shownTarget_first");
+  trigger("referenceTarget_none");
+  trigger("measuredPair_none");
+  QCOMPARE(w.settings().frames.shown_target, -1);
+  QCOMPARE(w.settings().frames.reference_target, -1);
+  QCOMPARE(w.settings().frames.measured_targets[0], -1);
 }
 
 }  // namespace imagepro::app::test
