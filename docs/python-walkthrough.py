@@ -49,10 +49,31 @@
 # `message`, `ok`, `ellipse`, `spots` (the centre spot's and the offset spot's `(u, v)` in
 # image pixels as seen), `pose`, `candidates` (the two poses of an `AmbiguousPose`),
 # `targets`, `index`, `timestamp_s`, `search_region`, `detected_region`, `threshold`,
-# `times_us` (each stage's time), `rim_seen` (the share of the rim seen, or `None`) and
-# `lens_inverse` (which inverse of the lens corrected the features, or `None` before the
-# reconstruction stage): the last three are the frame record's, as every output names them
-# (`docs/conventions.md`).
+# `times_us` (each stage's time), `rim_seen` (the share of the rim seen, or `None`),
+# `target` (the id of the settings' target it is, 0 for the one target of `target`, or
+# `None` when no target was told), `spot_error_px` and `rim_error_px` (the pose's self-check in pixels, or `None` when no pose
+# was checked: `docs/reconstruction.md`) and `lens_inverse` (which inverse of the lens
+# corrected the features, or `None` before the reconstruction stage): the last six are the
+# frame record's, as every output names them (`docs/conventions.md`), with the poses in
+# the chosen frames (`world_Rx_deg` ... and `ref_Rx_deg` ...) and the pair's
+# `pair_distance_mm` and `pair_angle_deg` (settings `frames`), each `None` when not chosen.
+#
+# With a set of targets (`targets` in the settings) a frame's fields are its shown target's
+# and `result.targets` lists every target found, each a `Target` with its `ellipse`,
+# `bbox`, `target` (its id, or `None`), `status` (its own: "ok", "UnknownTarget",
+# "DuplicateTarget" ...), `pose` (`None` unless ok), `pose_in_reference` and
+# `pose_in_world`:
+#
+# ```python
+# for t in result.targets:
+#     if t.status == "ok":
+#         print(t.target, t.pose.tz_mm)
+# ```
+#
+# A list is read and set whole under its own key: `s["targets"]` is the set of targets, a
+# list of dicts with the settings file's fields (`[]` for none), and an array such as
+# `s["frames.measured_targets"] = [1, 2]` takes a list or tuple; the file's checks apply (two
+# targets with one id, a pair naming no target) and raise `InvalidSettings` naming the key.
 #
 # ## Errors: what raises and what is reported
 #

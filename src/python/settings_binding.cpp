@@ -26,6 +26,11 @@ const SettingKey& settingKey(const std::string& key) {
   return *k;
 }
 
+// A key whose value is a whole list: the set of targets ("targets", a list of objects,
+// docs/conventions.md) or an array whose elements are keys of their own
+// ("frames.measured_targets", whose "frames.measured_targets[0]" is a key).
+bool isListKey(const std::string& key) { return key == "targets" || findSettingKey(key + "[0]") != nullptr; }
+
 // Where `key` ("cameras.file.principal_point_px[1]") lies in the settings document.
 json::json_pointer pointerTo(const std::string& key) {
   std::string pointer = "/";
@@ -68,6 +73,12 @@ json fromPython(const std::string& key, const py::handle& value) {
   }
   if (py::isinstance<py::float_>(value)) return value.cast<double>();
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    json array = json::array();
+    std::size_t i = 0;
+    for (const py::handle item : value) array.push_back(fromPython(key + "[" + std::to_string(i++) + "]", item));
+    return array;
+  }
   if (py::isinstance<py::dict>(value)) {
     json object = json::object();
     for (const auto& [name, item] : value.cast<py::dict>())
@@ -75,18 +86,31 @@ json fromPython(const std::string& key, const py::handle& value) {
     return object;
   }
   throw StatusError(Status::InvalidSettings, key + ": a " + py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>() +
-                                                 " is no settings value (bool, int, float, str or dict)");
+                                                 " is no settings value (bool, int, float, str, list or dict)");
 }
 
 py::object getValue(const Settings& s, const std::string& key) {
+  const json document = json::parse(settingsToJson(s));
+  if (isListKey(key)) {
+    // The file leaves out an empty set of targets.
+    const json::json_pointer at = pointerTo(key);
+    return document.contains(at) ? toPython(document.at(at)) : py::list();
+  }
   settingKey(key);
-  return toPython(json::parse(settingsToJson(s)).at(pointerTo(key)));
+  return toPython(document.at(pointerTo(key)));
 }
 
 void setValue(Settings& s, const std::string& key, const py::handle& value) {
-  settingKey(key);
   json document = json::parse(settingsToJson(s));
-  document.at(pointerTo(key)) = fromPython(key, value);
+  if (isListKey(key)) {
+    if (!py::isinstance<py::list>(value) && !py::isinstance<py::tuple>(value))
+      throw StatusError(Status::InvalidSettings, key + ": a list is wanted, not a " +
+                                                     py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
+    document[pointerTo(key)] = fromPython(key, value);
+  } else {
+    settingKey(key);
+    document.at(pointerTo(key)) = fromPython(key, value);
+  }
   std::string error;
   if (!ok(settingsFromJson(document.dump(), s, error))) throw StatusError(Status::InvalidSettings, error);
 }
@@ -134,6 +158,9 @@ void bindSettings(py::module_& m) {
 
 Values are read and written by the keys of the settings file (docs/conventions.md),
 e.g. s["pipeline.tracking.mode"] = "off" or s.get("cameras.file.principal_point_px[0]").
+A list is read and written whole under its own key: s["targets"] = [{"id": 1, "radius_mm":
+50, "spot_radius_mm": 6, "spot_offset_mm": 20}, ...] (the set of targets, [] for none) or
+s["frames.measured_targets"] = [1, 2].
 A value the settings file would refuse raises imagepro.InvalidSettings naming the key.)")
       .def(py::init<>(), "The defaults.")
       .def_static("defaults", [] { return Settings{}; }, "The defaults (the same as Settings()).")

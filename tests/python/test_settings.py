@@ -105,3 +105,30 @@ def test_a_camera_per_source_and_the_source_in_use(tmp_path):
     old.write_text('{"camera": {"image_plane_distance_mm": 9.5}}')
     loaded = imagepro.Settings.load(str(old))
     assert [loaded[f"cameras.{k}.image_plane_distance_mm"] for k in ("file", "camera", "virtual")] == [9.5] * 3
+
+
+def test_a_set_of_targets_is_set_and_read_as_a_list():
+    s = imagepro.Settings()
+    assert s["targets"] == []
+    pair = [
+        {"id": 1, "name": "arm", "radius_mm": 50.0, "spot_radius_mm": 6.0, "spot_offset_mm": 20.0},
+        {"id": 2, "radius_mm": 50.0, "spot_radius_mm": 6.0, "spot_offset_mm": 30.0},
+    ]
+    s["targets"] = pair
+    s["frames.measured_targets"] = (1, 2)
+    assert [t["id"] for t in s["targets"]] == [1, 2]
+    assert s["targets"][0]["name"] == "arm" and s["targets"][1]["spot_offset_mm"] == 30.0
+    assert s["frames.measured_targets"] == [1, 2] and s["frames.measured_targets[1]"] == 2
+    assert imagepro.Settings.from_json(s.to_json()) == s
+    # Refused as the settings file refuses them, naming what is wrong; nothing changes.
+    before = imagepro.Settings.from_json(s.to_json())
+    with pytest.raises(imagepro.InvalidSettings, match="id"):
+        s["targets"] = [pair[0], dict(pair[1], id=1)]
+    with pytest.raises(imagepro.InvalidSettings, match="a list is wanted"):
+        s["targets"] = pair[0]
+    with pytest.raises(imagepro.InvalidSettings, match="measured_targets"):
+        s["frames.measured_targets"] = [1, 7]
+    assert s == before
+    s["frames.measured_targets"] = [-1, -1]
+    s["targets"] = []
+    assert s["targets"] == [] and s == imagepro.Settings()
