@@ -1,7 +1,11 @@
 #include "core/source/sources.h"
 
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+
+#include <opencv2/imgproc.hpp>
 
 #include "core/settings/enum_names.h"
 #include "core/source/virtual_renderer.h"
@@ -52,6 +56,55 @@ Pose framePose(const VirtualSceneOptions& scene, const Pose& offset, std::int64_
   return withOffset(virtualPoseAt(scene, static_cast<double>(index) / scene.frame_rate_hz), offset);
 }
 
+// A set's members side by side on one moving body, in the target's plane: member k's
+// card lies k card widths and gaps along the first member's +X, so the live demo of a set
+// shows every member (the first at the scene's pose: the frame's truth).
+constexpr double kSetCardGapMm = 20.0;
+
+Pose memberPose(const Pose& first, std::size_t k, double spacingMm) {
+  const Eigen::Matrix3d R = rotationMatrix(first);
+  return poseFromRt(R, translation(first) + R * Eigen::Vector3d(static_cast<double>(k) * spacingMm, 0.0, 0.0));
+}
+
+// The pixels `pose`'s card may reach in the image (its corners' polygon, as the lens bends
+// them, grown by the blur's reach); false when a corner lies behind the camera.
+bool cardMask(const CameraModel& camera, const Pose& pose, double halfMm, double blurPx, cv::Mat& mask) {
+  const Eigen::Matrix3d R = rotationMatrix(pose);
+  const Eigen::Vector3d T = translation(pose);
+  std::array<cv::Point, 4> corners;
+  const std::array<Eigen::Vector2d, 4> local{Eigen::Vector2d(-halfMm, -halfMm), Eigen::Vector2d(halfMm, -halfMm),
+                                             Eigen::Vector2d(halfMm, halfMm), Eigen::Vector2d(-halfMm, halfMm)};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Eigen::Vector3d Pc = R * Eigen::Vector3d(local[i].x(), local[i].y(), 0.0) + T;
+    if (!(Pc.z() > 1.0)) return false;
+    const Eigen::Vector2d q = distortPixel(camera, projectIdeal(camera, Pc));
+    if (!q.allFinite() || std::abs(q.x()) > 1e5 || std::abs(q.y()) > 1e5) return false;
+    corners[i] = cv::Point(static_cast<int>(std::lround(q.x())), static_cast<int>(std::lround(q.y())));
+  }
+  mask.create(camera.height, camera.width, CV_8UC1);
+  mask.setTo(0);
+  cv::fillConvexPoly(mask, corners.data(), 4, cv::Scalar(255));
+  const int grow = static_cast<int>(std::ceil(3.0 * blurPx)) + 3;  // the blur's reach and the bent edges
+  cv::dilate(mask, mask, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * grow + 1, 2 * grow + 1)));
+  return true;
+}
+
+// Draws members 1.. of the set over `image` (the first member drawn at `first`): each is
+// rendered in the same scene with the same noise, and its card's pixels are copied in.
+void drawOtherMembers(const Settings& settings, const CameraModel& camera, const Pose& first, std::uint64_t seed,
+                      cv::Mat& image) {
+  const VirtualSceneOptions& scene = settings.virtual_scene;
+  thread_local cv::Mat member, mask;
+  for (std::size_t k = 1; k < settings.targets.size(); ++k) {
+    const TargetGeometry& g = settings.targets[k].geometry;
+    const double half = std::max(0.5 * scene.card_size_mm, g.radius_mm);
+    const Pose pose = memberPose(first, k, 2.0 * half + kSetCardGapMm);
+    if (!cardMask(camera, pose, half, scene.blur_sigma_px, mask)) continue;
+    renderTarget(camera, g, scene, pose, member, seed);
+    member.copyTo(image, mask);
+  }
+}
+
 }  // namespace
 
 std::unique_ptr<FrameSource> makeFileSource(std::vector<std::string> paths) {
@@ -79,12 +132,15 @@ Status VirtualSource::next(Frame& out) {
   const auto seed = static_cast<std::uint64_t>(index);
   // Its own camera, whichever source the settings say is in use.
   const CameraModel& camera = settings.camera(SourceKind::Virtual);
-  // With a set of targets, its first member: a target the set knows (target_set.h).
+  // With a set of targets, every member side by side, the first at the scene's pose (the
+  // pattern carries the first alone).
   const TargetGeometry& target = settings.targets.empty() ? settings.target : settings.targets.front().geometry;
-  if (content == VirtualContent::Pattern)
+  if (content == VirtualContent::Pattern) {
     renderPattern(camera, target, settings.pattern, scene, pose, out.image, seed);
-  else
+  } else {
     renderTarget(camera, target, scene, pose, out.image, seed);
+    if (settings.targets.size() > 1 && !out.image.empty()) drawOtherMembers(settings, camera, pose, seed, out.image);
+  }
   out.index = index;
   out.timestamp_s = static_cast<double>(index) / scene.frame_rate_hz;
   out.name.clear();

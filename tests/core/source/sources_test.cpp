@@ -5,6 +5,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <atomic>
+#include <cmath>
 #include <iterator>
 #include <filesystem>
 #include <fstream>
@@ -146,8 +147,8 @@ TEST(VirtualSource, RendersThroughItsOwnCamera) {
   EXPECT_EQ(f.image.size(), cv::Size(320, 240));
 }
 
-// With a set of targets in the settings the Virtual source draws the set's first member, a
-// target the set knows, not the settings' one "target" (which may belong to none).
+// With a set of targets in the settings the Virtual source draws the set's members (here a
+// set of one), targets the set knows, not the settings' one "target" (which may belong to none).
 TEST(VirtualSource, DrawsTheSetsFirstTarget) {
   Settings settings = virtualSettings();
   TargetSpec first;
@@ -162,6 +163,49 @@ TEST(VirtualSource, DrawsTheSetsFirstTarget) {
   renderTarget(settings.camera(), settings.target, settings.virtual_scene, *f.truth, lone, 0);
   EXPECT_EQ(cv::norm(f.image, expected, cv::NORM_INF), 0.0);
   EXPECT_GT(cv::norm(f.image, lone, cv::NORM_INF), 0.0);
+}
+
+// With several, every member is drawn, side by side on one body: the second's card 130 mm
+// and a 20 mm gap along the first's +X. Every pixel is the first member's scene or the
+// second's (the same scene and noise), and the second's card is all there.
+TEST(VirtualSource, DrawsEveryMemberOfTheSetSideBySide) {
+  Settings settings = virtualSettings();
+  settings.virtual_scene.mode = RenderMode::Grey;
+  settings.virtual_scene.initial_pose.tz_mm = 1200.0;
+  TargetSpec first, second;
+  first.id = 1;
+  first.geometry.spot_offset_mm = 20.0;
+  second.id = 2;
+  second.geometry.spot_offset_mm = 30.0;
+  settings.targets = {first, second};
+  auto source = makeVirtualSource(settings);
+  Frame f;
+  ASSERT_EQ(source->next(f), Status::Ok);
+  ASSERT_TRUE(f.truth);
+  const double spacing = settings.virtual_scene.card_size_mm + 20.0;
+  const Eigen::Matrix3d R = rotationMatrix(*f.truth);
+  const Pose beside = poseFromRt(R, translation(*f.truth) + R * Eigen::Vector3d(spacing, 0.0, 0.0));
+  cv::Mat alone, other;
+  renderTarget(settings.camera(), first.geometry, settings.virtual_scene, *f.truth, alone, 0);
+  renderTarget(settings.camera(), second.geometry, settings.virtual_scene, beside, other, 0);
+  int fromOther = 0, neither = 0;
+  for (int y = 0; y < f.image.rows; ++y)
+    for (int x = 0; x < f.image.cols; ++x) {
+      const std::uint8_t g = f.image.at<std::uint8_t>(y, x), a = alone.at<std::uint8_t>(y, x), b = other.at<std::uint8_t>(y, x);
+      if (g != a && g == b) ++fromOther;
+      if (g != a && g != b) ++neither;
+    }
+  EXPECT_EQ(neither, 0);
+  // The second disk's centre shows its white paper, where the first's frame has none.
+  const Eigen::Vector2d c = distortPixel(settings.camera(), projectIdeal(settings.camera(), translation(beside)));
+  const Eigen::Vector2d e = distortPixel(settings.camera(), projectIdeal(
+      settings.camera(), translation(beside) + R * Eigen::Vector3d(0.8 * second.geometry.radius_mm, 0.0, 0.0)));
+  ASSERT_TRUE(c.x() > 0 && c.x() < f.image.cols - 1 && c.y() > 0 && c.y() < f.image.rows - 1);
+  const cv::Point centre(static_cast<int>(std::lround(e.x())), static_cast<int>(std::lround(e.y())));
+  EXPECT_EQ(f.image.at<std::uint8_t>(centre), other.at<std::uint8_t>(centre));
+  EXPECT_NE(f.image.at<std::uint8_t>(centre), alone.at<std::uint8_t>(centre));
+  // The card's area: some thousands of pixels at 1.2 m.
+  EXPECT_GT(fromOther, 2000);
 }
 
 TEST(VirtualSource, KeysFromAnotherThreadWhileRendering) {
