@@ -87,6 +87,50 @@ void runSet(benchmark::State& state, int n, bool tracked) {
   state.counters["frames/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
+// The frames' scene with no target at all: noise over the same blurred background.
+const std::vector<Frame>& emptyFrames() {
+  static std::vector<Frame> sequence;
+  if (!sequence.empty()) return sequence;
+  const Settings defaults;
+  const CameraModel& camera = defaults.camera();
+  cv::Mat background(camera.height, camera.width, CV_8UC1);
+  cv::RNG rng(7);
+  rng.fill(background, cv::RNG::UNIFORM, 90, 170);
+  cv::GaussianBlur(background, background, cv::Size(0, 0), 6.0);
+  for (int k = 0; k < 10; ++k) {
+    Frame f;
+    cv::Mat noise(background.size(), CV_16SC1);
+    rng.fill(noise, cv::RNG::NORMAL, 0, 3);
+    background.convertTo(f.image, CV_16SC1);
+    f.image += noise;
+    f.image.convertTo(f.image, CV_8UC1);
+    f.index = k;
+    f.timestamp_s = k / 30.0;
+    sequence.push_back(f);
+  }
+  return sequence;
+}
+
+void runEmpty(benchmark::State& state, int n) {
+  cv::setNumThreads(1);
+  Engine engine(setOf(n));
+  FrameResult r;
+  for (const Frame& f : emptyFrames()) engine.process(f, r);
+  std::size_t i = 0;
+  double told = 0.0;
+  for (auto _ : state) {
+    engine.process(emptyFrames()[i], r);
+    told += ok(r.status) ? 1.0 : 0.0;
+    if (++i == emptyFrames().size()) i = 0;
+  }
+  state.counters["found%"] = 100.0 * told / static_cast<double>(state.iterations());
+  state.counters["frames/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+void NoTargetOneTarget(benchmark::State& state) { runEmpty(state, 1); }
+void NoTargetTwoTargets(benchmark::State& state) { runEmpty(state, 2); }
+void NoTargetFourTargets(benchmark::State& state) { runEmpty(state, 4); }
+
 void OneTargetFullFrame(benchmark::State& state) { runSet(state, 1, false); }
 void OneTargetTracked(benchmark::State& state) { runSet(state, 1, true); }
 void TwoTargetsFullFrame(benchmark::State& state) { runSet(state, 2, false); }
@@ -100,6 +144,9 @@ BENCHMARK(TwoTargetsFullFrame)->Unit(benchmark::kMicrosecond);
 BENCHMARK(TwoTargetsTracked)->Unit(benchmark::kMicrosecond);
 BENCHMARK(FourTargetsFullFrame)->Unit(benchmark::kMicrosecond);
 BENCHMARK(FourTargetsTracked)->Unit(benchmark::kMicrosecond);
+BENCHMARK(NoTargetOneTarget)->Unit(benchmark::kMicrosecond);
+BENCHMARK(NoTargetTwoTargets)->Unit(benchmark::kMicrosecond);
+BENCHMARK(NoTargetFourTargets)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace imagepro
