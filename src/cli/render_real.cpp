@@ -130,6 +130,25 @@ SetPoses setPoses(const Settings& settings, const Pose& first, std::uint64_t see
   return out;
 }
 
+// A real-scene video of every member of the settings' set (--scene video --set): the first
+// member on the video's own path, member m on the path of the video of seed (seed, m), each
+// hidden for `hidden` frames of its own, member m's window m * (hidden + 10) frames after
+// the first's (and wrapped round the video), so that each member leaves and comes back
+// while the others stay in view. The paths are independent, so cards cross: they are drawn
+// far to near, and a member whose disk's image box meets a nearer card's is marked covered
+// in its truth row (it may be partly or wholly out of sight).
+struct SetVideo {
+  std::vector<RealSceneVideo> paths;  // paths[0] is the video's own, without a hidden window
+  int frames = 0, hidden = 0;
+
+  bool hiddenAt(std::size_t m, int i) const {
+    if (hidden <= 0 || frames <= 0) return false;
+    const int begin = ((frames - hidden) / 2 + static_cast<int>(m) * (hidden + 10)) % frames;
+    const int k = ((i - begin) % frames + frames) % frames;
+    return k < hidden;
+  }
+};
+
 }  // namespace
 
 int renderRealScenes(const Args& args, const Settings& settings, bool video) {
@@ -156,19 +175,73 @@ int renderRealScenes(const Args& args, const Settings& settings, bool video) {
   const RealScenes scenes(settings, std::move(photos), rigEffects(args));
 
   const bool set = args.has("set");
-  if (set && (video || settings.targets.empty()))
-    throw UsageError(video ? "--set applies to --scene real only"
-                           : "--set draws the settings' \"targets\" set, and these settings list none");
-  RenderOutput out(*out_dir, false, poseCsvHeader(set ? std::string(kColumns) + ",target" : std::string(kColumns)));
+  if (set && settings.targets.empty())
+    throw UsageError("--set draws the settings' \"targets\" set, and these settings list none");
+  // A set video's rows say too whether a nearer card covers the member (1) or not (0).
+  const std::string columns =
+      set ? std::string(kColumns) + (video ? ",target,covered" : ",target") : std::string(kColumns);
+  RenderOutput out(*out_dir, false, poseCsvHeader(columns));
   const auto start = std::chrono::steady_clock::now();
-  const RealSceneVideo sequence(scenes, static_cast<std::uint64_t>(seed), video ? frames : 0, hidden);
+  const RealSceneVideo sequence(scenes, static_cast<std::uint64_t>(seed), video ? frames : 0, set ? 0 : hidden);
+  SetVideo setVideo{{}, frames, hidden};
+  if (video && set) {
+    setVideo.paths.reserve(settings.targets.size());
+    setVideo.paths.emplace_back(scenes, static_cast<std::uint64_t>(seed), frames, 0);
+    for (std::size_t m = 1; m < settings.targets.size(); ++m)
+      setVideo.paths.emplace_back(scenes, static_cast<std::uint64_t>(seed) * 1000003ULL + m, frames, 0);
+  }
   RealSceneFrame frame;
   std::string error;
   const int total = frames + negatives;
   for (int i = 0; i < total; ++i) {
     bool made = false;
     std::string name;
-    if (video) {
+    if (video && set) {
+      // The members not hidden at frame i, each on its own path, far to near.
+      std::vector<std::size_t> shown;
+      for (std::size_t m = 0; m < settings.targets.size(); ++m)
+        if (!setVideo.hiddenAt(m, i)) shown.push_back(m);
+      std::vector<Pose> at(settings.targets.size());
+      for (const std::size_t m : shown) at[m] = setVideo.paths[m].poseAt(i);
+      std::sort(shown.begin(), shown.end(), [&](std::size_t a, std::size_t b) { return at[a].tz_mm > at[b].tz_mm; });
+      std::vector<TargetGeometry> geometry;
+      std::vector<Pose> poses;
+      for (const std::size_t m : shown) {
+        geometry.push_back(settings.targets[m].geometry);
+        poses.push_back(at[m]);
+      }
+      // Covered: a nearer card (drawn after it) meets its disk's image box.
+      std::vector<std::pair<std::size_t, bool>> rows;
+      const double card = settings.virtual_scene.card_size_mm;
+      for (std::size_t k = 0; k < shown.size(); ++k) {
+        const TargetGeometry& g = settings.targets[shown[k]].geometry;
+        const cv::Rect2d disk = cardBox(settings.camera(), 2.0 * g.radius_mm, at[shown[k]]);
+        bool covered = false;
+        for (std::size_t j = k + 1; j < shown.size(); ++j)
+          covered = covered || (cardBox(settings.camera(), card, at[shown[j]]) & disk).area() > 0.0;
+        rows.emplace_back(shown[k], covered);
+      }
+      std::sort(rows.begin(), rows.end());
+      const ScenePainter painter = [&](const cv::Mat& background, const Pose&, const TargetLook& look, cv::Mat& scene) {
+        if (poses.empty()) {
+          background.convertTo(scene, CV_32F);
+          return;
+        }
+        cv::Mat drawn;
+        composeTargets(background, settings.camera(), std::vector<TargetGeometry>(geometry.begin(), geometry.end() - 1),
+                       look, std::vector<Pose>(poses.begin(), poses.end() - 1), drawn);
+        composeTarget(drawn, settings.camera(), geometry.back(), look, poses.back(), scene);
+      };
+      made = sequence.frame(i, frame, error, painter);
+      name = frameName("frame", i);
+      if (!made) throw InputError("frame " + std::to_string(i) + ": " + error);
+      if (rows.empty()) out.write(name, frame.image, poseCsvRow(name, Status::NoTarget, std::nullopt, extraColumns(frame) + ",,"));
+      for (const auto& [m, covered] : rows)
+        out.write(name, frame.image,
+                  poseCsvRow(name, Status::Ok, at[m],
+                             extraColumns(frame) + "," + std::to_string(settings.targets[m].id) + (covered ? ",1" : ",0")));
+      continue;
+    } else if (video) {
       made = sequence.frame(i, frame, error);
       name = frameName("frame", i);
     } else if (i < frames && set) {

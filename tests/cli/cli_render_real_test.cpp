@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -100,6 +101,42 @@ TEST(CliRenderReal, VideoHidesTheTargetInTheMiddle) {
     const bool hidden = i >= 8 && i < 12;
     EXPECT_NE(rows[i + 1].find(hidden ? ",NoTarget,,,,,,,0," : ",ok,"), std::string::npos) << rows[i + 1];
     EXPECT_NE(rows[i + 1].find(",75"), std::string::npos) << rows[i + 1];  // JPEG quality
+  }
+}
+
+// A video of a set: each member on its own path, hidden in a window of its own (the
+// first in the middle, the second hidden + 10 frames later), one truth row per member not
+// hidden, its id and whether a nearer card covers it.
+TEST(CliRenderReal, VideoOfASetHidesEachMemberInItsOwnWindow) {
+  const fs::path photos = photoFolder("cli_render_set_video_photos");
+  const fs::path dir = freshDir("cli_render_set_video");
+  const fs::path config = freshDir("cli_render_set_video_config") / "pair.json";
+  {
+    std::ofstream f(config);
+    f << R"({"targets": [{"id": 1, "radius_mm": 50, "spot_radius_mm": 6, "spot_offset_mm": 20},
+                          {"id": 2, "radius_mm": 50, "spot_radius_mm": 6, "spot_offset_mm": 30}]})";
+  }
+  const CliRun r = cli("render --out " + dir.string() + " --config " + config.string() +
+                       " --scene video --set --frames 40 --hidden 4 --seed 3 --backgrounds " + photos.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = lines(contents(dir / "truth.csv"));
+  ASSERT_GE(rows.size(), 2u);
+  EXPECT_EQ(rows[0].substr(rows[0].size() - 15), ",target,covered");
+  std::vector<std::vector<int>> members(40);
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const std::string& row = rows[k];
+    ASSERT_EQ(row.rfind("frame_000", 0), 0u) << row;
+    const int frame = std::stoi(row.substr(6, 5));
+    ASSERT_NE(row.find(",ok,"), std::string::npos) << row;  // never a frame without a member here
+    const std::size_t covered = row.rfind(','), id = row.rfind(',', covered - 1);
+    EXPECT_TRUE(row.substr(covered + 1) == "0" || row.substr(covered + 1) == "1") << row;
+    members[static_cast<std::size_t>(frame)].push_back(std::stoi(row.substr(id + 1, covered - id - 1)));
+  }
+  for (int i = 0; i < 40; ++i) {
+    std::vector<int> expected;
+    if (!(i >= 18 && i < 22)) expected.push_back(1);
+    if (!(i >= 32 && i < 36)) expected.push_back(2);
+    EXPECT_EQ(members[static_cast<std::size_t>(i)], expected) << "frame " << i;
   }
 }
 
