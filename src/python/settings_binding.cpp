@@ -193,7 +193,7 @@ A value the settings file would refuse raises imagepro.InvalidSettings naming th
       .def("set", &setValue, py::arg("key"), py::arg("value"), "Sets the value at a key, checked as the settings file is.")
       .def("__getitem__", &getValue)
       .def("__setitem__", &setValue)
-      .def("__contains__", [](const Settings&, const std::string& key) { return findSettingKey(key) != nullptr; })
+      .def("__contains__", [](const Settings&, const std::string& key) { return findSettingKey(key) != nullptr || isListKey(key); })
       .def_static(
           "keys",
           [] {

@@ -35,6 +35,15 @@ Settings setOf(int n) {
   return s;
 }
 
+// The frames' scene: uniform noise blurred into soft blotches of grey 90-170.
+cv::Mat sceneBackground(const CameraModel& camera) {
+  cv::Mat background(camera.height, camera.width, CV_8UC1);
+  cv::RNG rng(7);
+  rng.fill(background, cv::RNG::UNIFORM, 90, 170);
+  cv::GaussianBlur(background, background, cv::Size(0, 0), 6.0);
+  return background;
+}
+
 // Each target circles in its own quarter of the frame at 1.1-1.3 m, turning and tilting.
 const std::vector<Frame>& frames(int n) {
   static std::map<int, std::vector<Frame>> sequences;
@@ -42,10 +51,7 @@ const std::vector<Frame>& frames(int n) {
   if (!sequence.empty()) return sequence;
   const Settings s = setOf(n);
   const CameraModel& camera = s.camera();
-  cv::Mat background(camera.height, camera.width, CV_8UC1);
-  cv::RNG rng(7);
-  rng.fill(background, cv::RNG::UNIFORM, 90, 170);
-  cv::GaussianBlur(background, background, cv::Size(0, 0), 6.0);
+  const cv::Mat background = sceneBackground(camera);
   std::vector<TargetGeometry> geometry;
   for (int i = 0; i < std::max(n, 1); ++i) geometry.push_back(n == 1 ? s.target : s.targets[i].geometry);
   for (int k = 0; k < kFrames; ++k) {
@@ -92,11 +98,8 @@ const std::vector<Frame>& emptyFrames() {
   static std::vector<Frame> sequence;
   if (!sequence.empty()) return sequence;
   const Settings defaults;
-  const CameraModel& camera = defaults.camera();
-  cv::Mat background(camera.height, camera.width, CV_8UC1);
-  cv::RNG rng(7);
-  rng.fill(background, cv::RNG::UNIFORM, 90, 170);
-  cv::GaussianBlur(background, background, cv::Size(0, 0), 6.0);
+  const cv::Mat background = sceneBackground(defaults.camera());
+  cv::RNG rng(11);
   for (int k = 0; k < 10; ++k) {
     Frame f;
     cv::Mat noise(background.size(), CV_16SC1);

@@ -109,7 +109,7 @@ def test_a_camera_per_source_and_the_source_in_use(tmp_path):
 
 def test_a_set_of_targets_is_set_and_read_as_a_list():
     s = imagepro.Settings()
-    assert s["targets"] == []
+    assert s["targets"] == [] and "targets" in s and "frames.measured_targets" in s
     pair = [
         {"id": 1, "name": "arm", "radius_mm": 50.0, "spot_radius_mm": 6.0, "spot_offset_mm": 20.0},
         {"id": 2, "radius_mm": 50.0, "spot_radius_mm": 6.0, "spot_offset_mm": 30.0},

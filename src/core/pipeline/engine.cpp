@@ -89,6 +89,9 @@ void Engine::Impl::run(FrameResult& out) {
   const bool stream = frame.name.empty();
   if (!settings.targets.empty()) {
     runSet(out, stream && valid);
+    // A frame's truth is the set's first member's (the Virtual source draws that one at the
+    // scene's pose): beside another shown target it would be another target's pose.
+    if (out.target_id != settings.targets.front().id) out.truth.reset();
     applyPoseFrames(settings.frames, out);
     return;
   }

@@ -198,3 +198,31 @@ TEST(EngineSet, PosesInTheReferenceTargetsFrameAndThePairsDistanceAndAngle) {
 
 }  // namespace
 }  // namespace imagepro
+
+namespace imagepro {
+namespace {
+
+// A frame's truth (the Virtual source's: its set's first member's pose) goes with the
+// results only when the shown target is that member.
+TEST(EngineSet, TheFramesTruthIsTheFirstMembersAndShownOnlyWithIt) {
+  Settings s = setOf(2);
+  s.pipeline.tracking.mode = TrackingMode::Off;
+  const std::vector<Pose> poses{Pose{10.0, 5.0, 0.0, -150.0, 0.0, 1000.0}, Pose{-5.0, 10.0, 30.0, 150.0, 0.0, 1000.0}};
+  Frame f;
+  f.image = frameOf(s, {0, 1}, poses);
+  f.truth = poses[0];
+  for (const int shown : {-1, 1, 2}) {
+    s.frames.shown_target = shown;
+    Engine engine(s);
+    FrameResult r;
+    engine.process(f, r);
+    ASSERT_TRUE(toldAs(r, 1) && toldAs(r, 2)) << "shown " << shown;
+    EXPECT_EQ(r.truth.has_value(), shown != 2) << "shown " << shown;
+    if (r.truth) {
+      EXPECT_LT(rotationErrorDeg(*r.truth, *r.pose), 1.0);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace imagepro
